@@ -1,0 +1,1 @@
+// keeps object libraries non-empty while a layer has no sources yet

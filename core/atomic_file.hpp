@@ -1,0 +1,30 @@
+#pragma once
+// Writing outputs without ever leaving a partial file: write to a temporary
+// name in the destination folder, then rename over the final name (atomic on
+// POSIX). A failed or interrupted write never touches an existing file.
+#include <string>
+
+namespace weft {
+
+class AtomicOutput {
+public:
+    explicit AtomicOutput(std::string finalPath);
+    ~AtomicOutput();  // removes the temporary file unless commit() succeeded
+    AtomicOutput(const AtomicOutput&) = delete;
+    AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+    // Where to write; same folder and extension as the final path.
+    const std::string& tempPath() const { return temp_; }
+    void commit();
+
+private:
+    std::string final_;
+    std::string temp_;
+    bool committed_ = false;
+};
+
+// Fails early (before a long render) when the output cannot be written:
+// missing folder, or an extension no image writer handles.
+void checkOutputPath(const std::string& path, const std::string& what);
+
+}  // namespace weft

@@ -1,0 +1,34 @@
+#include "core/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace weft {
+
+Ray Camera::generate(double px, double py, int width, int height) const {
+    const Vec3d forward = (target - eye).unitSafe();
+    const Vec3d right = forward.cross(up).unitSafe();
+    const Vec3d trueUp = right.cross(forward);
+    const double tanHalf = std::tan(0.5 * fovY * M_PI / 180.0);
+    const double aspect = double(width) / double(height);
+    const double sx = (2.0 * px / width - 1.0) * tanHalf * aspect;
+    const double sy = (1.0 - 2.0 * py / height) * tanHalf;
+    return {eye, (forward + right * sx + trueUp * sy).unitSafe()};
+}
+
+Camera Camera::framing(const BBoxd& box, double fovY, double aspect) {
+    const Vec3d center = box.getCenter();
+    const Vec3d extent = box.extents() * 0.5;
+    const double tanHalfY = std::tan(0.5 * fovY * M_PI / 180.0);
+    const double tanHalfX = tanHalfY * aspect;
+    // Distance at which the front face's half extents fit both fields of view.
+    const double fitY = extent.y() / tanHalfY, fitX = extent.x() / tanHalfX;
+    const double distance = extent.z() + 1.1 * std::max(fitX, fitY);
+    Camera cam;
+    cam.fovY = fovY;
+    cam.target = center;
+    cam.eye = center + Vec3d(0, 0, std::max(distance, 1e-6));
+    return cam;
+}
+
+}  // namespace weft

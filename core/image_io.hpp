@@ -1,0 +1,30 @@
+#pragma once
+// Image files through OpenImageIO: multi-channel EXR with render metadata,
+// and display-referred previews (PNG/JPEG/TIFF) through OpenColorIO.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image.hpp"
+
+namespace weft {
+
+// Ordered string attributes written into the file header ("weft:technique"...).
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+// Writes all channels as a 32-bit float, zip-compressed EXR, atomically.
+// No time stamps are written: same pixels and metadata give the same bytes.
+void writeExr(const Image& image, const std::string& path, const Metadata& metadata);
+
+// Reads any image OpenImageIO understands, as float; metadata receives the
+// string attributes when given.
+Image readImage(const std::string& path, Metadata* metadata = nullptr);
+
+// Writes an 8-bit display-referred preview (format from the extension),
+// composited over black, through the OCIO display transform; atomically.
+void writePreview(const Image& image, const std::string& path);
+
+// Whether the extension names a preview format (not EXR).
+bool isPreviewPath(const std::string& path);
+
+}  // namespace weft

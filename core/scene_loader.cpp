@@ -1,0 +1,284 @@
+// Scene files: strict JSON. Every object lists the keys it accepts; an unknown
+// key, a wrong type or a value out of range is an error at file:line:column.
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/json_doc.hpp"
+#include "core/scene.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace weft {
+
+namespace {
+
+// Typed, position-aware access to one JSON object of the scene.
+class ObjectReader {
+public:
+    ObjectReader(const JsonDoc& doc, std::string pointer, std::string what, std::set<std::string> keys)
+        : doc_(doc), pointer_(std::move(pointer)), what_(std::move(what)) {
+        const json& node = value();
+        if (!node.is_object()) failAt(pointer_, what_ + " must be an object");
+        for (const auto& item : node.items())
+            if (!keys.count(item.key())) {
+                std::string valid;
+                for (const auto& k : keys) valid += (valid.empty() ? "" : ", ") + k;
+                failAt(pointer_ + "/" + item.key() + "#key", "unknown key '" + item.key() + "' in " + what_ + "; valid keys: " + valid);
+            }
+    }
+    const json& value() const { return doc_.root().at(json::json_pointer(pointer_)); }
+    bool has(const std::string& key) const { return value().contains(key); }
+    std::string child(const std::string& key) const { return pointer_ + "/" + key; }
+
+    [[noreturn]] void failAt(const std::string& pointer, const std::string& msg) const {
+        throw Error(doc_.where(pointer) + ": " + msg);
+    }
+    [[noreturn]] void fail(const std::string& key, const std::string& msg) const { failAt(child(key), msg); }
+
+    double number(const std::string& key, double def, double lo, double hi) const {
+        if (!has(key)) return def;
+        const json& v = value()[key];
+        if (!v.is_number()) fail(key, what_ + "." + key + " must be a number");
+        const double d = v.get<double>();
+        if (!(d >= lo && d <= hi))
+            fail(key, what_ + "." + key + " = " + v.dump() + " is outside [" + json(lo).dump() + ", " + json(hi).dump() + "]");
+        return d;
+    }
+    std::string string(const std::string& key, const std::string& def) const {
+        if (!has(key)) return def;
+        const json& v = value()[key];
+        if (!v.is_string()) fail(key, what_ + "." + key + " must be a string");
+        return v.get<std::string>();
+    }
+    Vec3d vec3(const std::string& key, const Vec3d& def) const {
+        if (!has(key)) return def;
+        const json& v = value()[key];
+        if (!v.is_array() || v.size() != 3) fail(key, what_ + "." + key + " must be an array of 3 numbers");
+        Vec3d out;
+        for (int i = 0; i < 3; ++i) {
+            if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) fail(key, what_ + "." + key + " must be an array of 3 finite numbers");
+            out[i] = v[i].get<double>();
+        }
+        return out;
+    }
+    const JsonDoc& doc() const { return doc_; }
+    const std::string& pointer() const { return pointer_; }
+
+private:
+    const JsonDoc& doc_;
+    std::string pointer_;
+    std::string what_;
+};
+
+constexpr double kHuge = 1e30;
+
+Camera readCamera(const ObjectReader& r) {
+    Camera cam;
+    cam.eye = r.vec3("eye", cam.eye);
+    cam.target = r.vec3("target", cam.target);
+    cam.up = r.vec3("up", cam.up);
+    cam.fovY = r.number("fov", cam.fovY, 0.01, 179.0);
+    if ((cam.target - cam.eye).length() < 1e-12) r.fail("target", "camera.target must differ from camera.eye");
+    if ((cam.target - cam.eye).cross(cam.up).length() < 1e-12 * (cam.target - cam.eye).length())
+        r.fail("up", "camera.up must not be parallel to the view direction");
+    return cam;
+}
+
+TransferFunction readTransferFunction(const ObjectReader& r, const Volume& vol) {
+    double lo = std::min(0.0f, vol.valueMin), hi = vol.valueMax > lo ? vol.valueMax : lo + 1.0;
+    if (r.has("range")) {
+        const json& v = r.value()["range"];
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() || !(v[1].get<double>() > v[0].get<double>()))
+            r.fail("range", "transfer_function.range must be [min, max] with max > min");
+        lo = v[0].get<double>(), hi = v[1].get<double>();
+    }
+    if (!r.has("points")) return TransferFunction::defaultFor(lo, hi);
+    const json& pts = r.value()["points"];
+    if (!pts.is_array() || pts.empty()) r.fail("points", "transfer_function.points must be a non-empty array");
+    std::vector<TfPoint> points;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        ObjectReader p(r.doc(), r.child("points") + "/" + std::to_string(i), "transfer_function point", {"s", "color", "extinction"});
+        TfPoint tp;
+        tp.s = p.number("s", 0.0, 0.0, 1.0);
+        const Vec3d c = p.vec3("color", Vec3d(1, 1, 1));
+        if (c.x() < 0 || c.y() < 0 || c.z() < 0) p.fail("color", "transfer_function colour must not be negative");
+        tp.color = {c.x(), c.y(), c.z()};
+        tp.extinction = p.number("extinction", 0.0, 0.0, kHuge);
+        if (!points.empty() && tp.s < points.back().s) p.fail("s", "transfer_function points must be sorted by s");
+        points.push_back(tp);
+    }
+    return TransferFunction(lo, hi, std::move(points));
+}
+
+Volume readVolume(const ObjectReader& r, const fs::path& baseDir) {
+    Volume vol;
+    const bool fromFile = r.has("file"), procedural = r.has("procedural");
+    if (fromFile == procedural) r.failAt(r.pointer(), "a volume needs exactly one of 'file' or 'procedural'");
+    try {
+        if (fromFile) {
+            fs::path file = r.string("file", "");
+            if (file.is_relative()) file = baseDir / file;
+            vol.source = file.string();
+            vol.grid = readFloatGrid(vol.source, r.string("grid", ""));
+        } else {
+            const std::string kind = r.string("procedural", "");
+            const int res = int(r.number("resolution", 128, 4, 1024));
+            vol.source = "procedural:" + kind;
+            vol.grid = makeProceduralGrid(kind, res, std::uint64_t(r.number("seed", 1, 0, 4294967295.0)));
+        }
+    } catch (const Error& e) {
+        r.fail(fromFile ? "file" : "procedural", e.what());
+    }
+    vol.name = vol.grid->getName();
+    computeValueRange(vol);
+    if (r.has("transfer_function")) {
+        ObjectReader tf(r.doc(), r.child("transfer_function"), "transfer_function", {"range", "points"});
+        vol.tf = readTransferFunction(tf, vol);
+    } else {
+        vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
+    }
+    return vol;
+}
+
+Light readLight(const ObjectReader& r) {
+    Light light;
+    const std::string type = r.string("type", "directional");
+    if (type == "directional") light.type = LightType::Directional;
+    else if (type == "point") light.type = LightType::Point;
+    else if (type == "environment") light.type = LightType::Environment;
+    else r.fail("type", "unknown light type '" + type + "' (known: directional|point|environment)");
+    light.direction = r.vec3("direction", light.direction);
+    if (light.type == LightType::Directional && light.direction.length() < 1e-12) r.fail("direction", "light direction must not be zero");
+    light.direction = light.direction.unitSafe();
+    light.position = r.vec3("position", light.position);
+    const Vec3d c = r.vec3("color", Vec3d(1, 1, 1));
+    light.color = Vec3f(float(c.x()), float(c.y()), float(c.z()));
+    light.intensity = r.number("intensity", 1.0, 0.0, kHuge);
+    return light;
+}
+
+std::string paramText(const ObjectReader& r, const std::string& key) {
+    const json& v = r.value()[key];
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number() || v.is_boolean()) return v.dump();
+    r.fail(key, "render.params." + key + " must be a string, number or boolean");
+}
+
+void readRender(const ObjectReader& r, SceneRenderSettings& out) {
+    if (r.has("technique")) out.technique = r.string("technique", "");
+    if (r.has("resolution")) {
+        const json& v = r.value()["resolution"];
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
+            v[0].get<long long>() < 1 || v[1].get<long long>() < 1 || v[0].get<long long>() > 65536 || v[1].get<long long>() > 65536)
+            r.fail("resolution", "render.resolution must be [width, height], integers in [1, 65536]");
+        out.width = v[0].get<int>(), out.height = v[1].get<int>();
+    }
+    if (r.has("spp")) out.spp = int(r.number("spp", 1, 1, 1 << 20));
+    if (r.has("seed")) out.seed = std::uint64_t(r.number("seed", 0, 0, 9007199254740992.0));
+    if (r.has("params")) {
+        const json& params = r.value()["params"];
+        if (!params.is_object()) r.fail("params", "render.params must be an object");
+        ObjectReader pr(r.doc(), r.child("params"), "render.params", [&] {
+            std::set<std::string> keys;
+            for (const auto& item : params.items()) keys.insert(item.key());
+            return keys;
+        }());
+        for (const auto& item : params.items()) out.params[item.key()] = paramText(pr, item.key());
+    }
+}
+
+template <class Fn>
+void forEachInArray(const JsonDoc& doc, const std::string& pointer, const std::string& what, Fn fn) {
+    const json& arr = doc.root().at(json::json_pointer(pointer));
+    if (!arr.is_array()) throw Error(doc.where(pointer) + ": '" + what + "' must be an array");
+    for (std::size_t i = 0; i < arr.size(); ++i) fn(pointer + "/" + std::to_string(i));
+}
+
+Scene loadJsonScene(const std::string& path, std::optional<double> aspect) {
+    const JsonDoc doc = JsonDoc::load(path);
+    ObjectReader top(doc, "", "scene", {"camera", "volumes", "lights", "render"});
+    const fs::path baseDir = fs::path(path).parent_path();
+    Scene scene;
+    scene.source = path;
+    if (top.has("volumes"))
+        forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
+            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function"}), baseDir));
+        });
+    if (top.has("lights"))
+        forEachInArray(doc, "/lights", "lights", [&](const std::string& p) {
+            scene.lights.push_back(readLight(ObjectReader(doc, p, "light", {"type", "direction", "position", "color", "intensity"})));
+        });
+    if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", {"technique", "resolution", "spp", "seed", "params"}), scene.render);
+    if (top.has("camera")) scene.camera = readCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov"}));
+    else if (!scene.volumes.empty()) {
+        const double sceneAspect = scene.render.width ? double(*scene.render.width) / *scene.render.height : 1.0;
+        scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect.value_or(sceneAspect));
+    }
+    return scene;
+}
+
+Scene sceneAroundVolume(Volume vol, const std::string& source, double aspect) {
+    Scene scene;
+    scene.source = source;
+    scene.volumes.push_back(std::move(vol));
+    scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect);
+    return scene;
+}
+
+Scene loadBareVdb(const std::string& path, double aspect) {
+    Volume vol;
+    vol.source = path;
+    vol.grid = readFloatGrid(path, "");
+    vol.name = vol.grid->getName();
+    computeValueRange(vol);
+    vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
+    return sceneAroundVolume(std::move(vol), path, aspect);
+}
+
+Scene loadBuiltin(const std::string& name, double aspect) {
+    if (name != "cloud" && name != "sphere")
+        throw Error("unknown built-in scene 'builtin:" + name + "' (known: " + builtinSceneNames() + ")");
+    Volume vol;
+    vol.source = "procedural:" + name;
+    vol.grid = makeProceduralGrid(name, name == "cloud" ? 128 : 64, 1);
+    vol.name = vol.grid->getName();
+    computeValueRange(vol);
+    vol.tf = name == "cloud"
+                 ? TransferFunction(0.0, 1.0, {{0.0, {0.25, 0.35, 0.7}, 0.0}, {0.25, {0.7, 0.75, 0.9}, 0.015}, {0.6, {1.0, 0.9, 0.75}, 0.06}, {1.0, {1.0, 0.7, 0.4}, 0.12}})
+                 : TransferFunction(0.0, 1.0, {{0.0, {1, 1, 1}, 0.0}, {1.0, {1, 1, 1}, 0.05}});
+    Scene scene = sceneAroundVolume(std::move(vol), "builtin:" + name, aspect);
+    scene.camera.eye = scene.camera.target + Vec3d(0.6, 0.35, 1.25);  // three-quarter view
+    return scene;
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace
+
+const char* builtinSceneNames() { return "builtin:cloud|builtin:sphere"; }
+
+BBoxd Scene::worldBox() const {
+    BBoxd box;
+    for (const Volume& v : volumes) box.expand(v.worldBox());
+    return box;
+}
+
+Scene loadScene(const std::string& input, std::optional<double> aspect) {
+    if (input.rfind("builtin:", 0) == 0) return loadBuiltin(input.substr(8), aspect.value_or(1.0));
+    const std::string ext = lowerExtension(input);
+    if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0));
+    if (ext == ".json") {
+        if (!fs::exists(input)) throw Error("scene '" + input + "': no such file");
+        return loadJsonScene(input, aspect);
+    }
+    throw Error("input '" + input + "': expected a scene .json, a .vdb file or " + builtinSceneNames());
+}
+
+}  // namespace weft

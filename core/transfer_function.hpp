@@ -1,0 +1,51 @@
+#pragma once
+// A 1D transfer function: data value -> (colour, extinction). The data range
+// [rangeMin, rangeMax] maps to s in [0, 1]; control points are piecewise
+// linear in s. Extinction is per voxel length, so the opacity of a segment
+// of length h voxels at constant s is 1 - exp(-extinction(s) * h); colour is
+// the emitted colour per unit opacity (emission-absorption model).
+#include <array>
+#include <vector>
+
+namespace weft {
+
+struct TfPoint {
+    double s = 0;                         // position in [0, 1]
+    std::array<double, 3> color{1, 1, 1};  // emitted colour
+    double extinction = 0;                // per voxel length, >= 0
+};
+
+struct TfSample {
+    float r, g, b;
+    float extinction;
+};
+
+class TransferFunction {
+public:
+    TransferFunction() = default;
+    // Points must be sorted by s, with s in [0, 1]; at least one point.
+    TransferFunction(double rangeMin, double rangeMax, std::vector<TfPoint> points);
+
+    double rangeMin() const { return rangeMin_; }
+    double rangeMax() const { return rangeMax_; }
+    const std::vector<TfPoint>& points() const { return points_; }
+
+    // Normalised scalar of a data value, clamped to [0, 1].
+    double normalize(double value) const;
+    // Exact piecewise-linear evaluation at s in [0, 1] (double precision).
+    TfPoint atS(double s) const;
+    // Fast lookup through a 4096-entry table, for inner loops.
+    TfSample lookup(float value) const;
+
+    // The default for a bare grid: a smoke-like ramp over [0, maxValue].
+    static TransferFunction defaultFor(double minValue, double maxValue);
+
+private:
+    void buildTable();
+    double rangeMin_ = 0, rangeMax_ = 1;
+    std::vector<TfPoint> points_;
+    std::vector<TfSample> table_;
+    float tableScale_ = 1, tableOffset_ = 0;
+};
+
+}  // namespace weft

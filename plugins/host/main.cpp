@@ -1,0 +1,54 @@
+// weft: the command-line host. Sub-commands register themselves (see
+// plugins/command.hpp); errors become one line on stderr and exit status 1.
+#include <openvdb/Exceptions.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "plugins/command.hpp"
+#include "plugins/plugin_api.hpp"
+
+namespace {
+
+void listPlugins() {
+    for (const weft::TechniqueInfo* t : weft::techniques().all())
+        std::printf("%-28s %s\n", t->name.c_str(), t->summary.c_str());
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"weft: offline renderer of OpenVDB volumes and meshes with sampling techniques from the literature"};
+    app.set_version_flag("--version", std::string("weft ") + WEFT_VERSION);
+    app.require_subcommand(0, 1);
+    bool list = false;
+    app.add_flag("--list-plugins", list, "list the registered techniques, one per line");
+    weft::loadExternalPlugins();
+    auto cmds = weft::commands().all();
+    std::sort(cmds.begin(), cmds.end(), [](auto* a, auto* b) { return a->order < b->order; });
+    for (const weft::CommandInfo* c : cmds) c->install(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::fprintf(stderr, "weft: error: %s\n", e.what());
+        return 1;
+    }
+    if (list) listPlugins();
+    else if (app.get_subcommands().empty()) std::cout << app.help();
+    return weft::commandExitStatus();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const weft::Error& e) {
+        std::fprintf(stderr, "weft: error: %s\n", e.what());
+    } catch (const openvdb::Exception& e) {
+        std::fprintf(stderr, "weft: error: OpenVDB: %s\n", e.what());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "weft: error: %s\n", e.what());
+    }
+    return 1;
+}

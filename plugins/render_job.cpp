@@ -1,0 +1,150 @@
+#include "plugins/render_job.hpp"
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "core/atomic_file.hpp"
+#include "core/progress.hpp"
+#include "core/scene.hpp"
+#include "plugins/command.hpp"
+#include "plugins/technique.hpp"
+
+namespace weft {
+
+std::pair<int, int> parseResolution(const std::string& text) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
+        w > 65536 || h > 65536)
+        throw Error("bad resolution '" + text + "': expected WxH with W and H in [1, 65536], e.g. 512x512");
+    return {w, h};
+}
+
+namespace {
+
+void checkOutputs(const RenderRequest& r) {
+    checkOutputPath(r.output, "output");
+    if (!(r.output.size() > 4 && r.output.compare(r.output.size() - 4, 4, ".exr") == 0))
+        throw Error("output '" + r.output + "': the render output must be an .exr file (use --preview for PNG)");
+    if (!r.preview.empty()) {
+        checkOutputPath(r.preview, "preview");
+        if (!isPreviewPath(r.preview)) throw Error("preview '" + r.preview + "': expected a .png, .jpg or .tif file");
+    }
+    if (!r.stats.empty()) checkOutputPath(r.stats, "stats");
+}
+
+RenderSettings settingsFor(const RenderRequest& r, const Scene& scene) {
+    RenderSettings s;
+    if (r.resolution) std::tie(s.width, s.height) = parseResolution(*r.resolution);
+    else if (scene.render.width) s.width = *scene.render.width, s.height = *scene.render.height;
+    s.spp = r.spp.value_or(scene.render.spp.value_or(1));
+    if (s.spp < 1 || s.spp > (1 << 20)) throw Error("--spp " + std::to_string(s.spp) + " is outside [1, 1048576]");
+    s.seed = r.seed.value_or(scene.render.seed.value_or(0));
+    s.showProgress = Progress::terminalAttached();
+    return s;
+}
+
+// Replaces NaN/Inf by 0 (a last guard: techniques must not produce them) and counts them.
+std::int64_t scrubNonFinite(Image& image) {
+    std::int64_t bad = 0;
+    for (float& v : image.data())
+        if (!std::isfinite(v)) v = 0.0f, ++bad;
+    return bad;
+}
+
+Metadata metadataFor(const RenderRequest& r, const std::string& technique, const ParamSet& params,
+                     const RenderSettings& s, const CounterMap& counters) {
+    Metadata md{{"weft:version", WEFT_VERSION}, {"weft:input", r.input}, {"weft:technique", technique},
+                {"weft:seed", std::to_string(s.seed)}, {"weft:spp", std::to_string(s.spp)}};
+    for (const auto& [k, v] : params.values()) md.emplace_back("weft:param:" + k, v);
+    for (const auto& [k, v] : counters) md.emplace_back("weft:counter:" + k, std::to_string(v));
+    md.emplace_back("weft:complete", "1");
+    return md;
+}
+
+void writeStats(const RenderRequest& r, const RenderOutcome& out, int threads) {
+    nlohmann::ordered_json j;
+    for (const auto& [k, v] : out.metadata) {
+        if (k.rfind("weft:param:", 0) == 0) j["params"][k.substr(11)] = v;
+        else if (k.rfind("weft:counter:", 0) != 0 && k != "weft:complete") j[k.substr(5)] = v;
+    }
+    j["resolution"] = {out.image.width(), out.image.height()};
+    j["threads"] = threads;
+    j["counters"] = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : out.counters) j["counters"][k] = v;
+    for (const auto& [k, v] : out.timingsMs) j["timings_ms"][k] = v;
+    AtomicOutput file(r.stats);
+    std::ofstream os(file.tempPath());
+    os << j.dump(2) << "\n";
+    os.close();
+    if (!os) throw Error("stats '" + r.stats + "': write failed");
+    file.commit();
+}
+
+int effectiveThreads(int requested) {
+    return requested > 0 ? requested : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+}  // namespace
+
+RenderOutcome renderToImage(const RenderRequest& r) {
+    if (r.threads < 0) throw Error("--threads must be >= 0 (0 = all cores)");
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
+    RenderContext ctx;
+    std::optional<double> aspect;
+    if (r.resolution) {
+        auto [w, h] = parseResolution(*r.resolution);
+        aspect = double(w) / h;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const Scene scene = loadScene(r.input, aspect);
+    ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ctx.settings = settingsFor(r, scene);
+
+    const std::string name = r.technique.value_or(scene.render.technique.value_or("volume.raymarch"));
+    const TechniqueInfo& info = techniques().get(name);
+    std::map<std::string, std::string> given = scene.render.params;
+    for (const std::string& kv : r.sets) {
+        auto [k, v] = splitKeyValue(kv, "--set");
+        given[k] = v;
+    }
+    const ParamSet params = info.params.parse(given);
+    auto technique = info.create(scene, params);
+
+    RenderOutcome out;
+    {
+        ScopedTimer timer(ctx.timings, "render");
+        out.image = technique->render(scene, ctx);
+    }
+    if (std::int64_t bad = scrubNonFinite(out.image)) {
+        ctx.counters.add("image.nonfinite", bad);
+        std::fprintf(stderr, "weft: warning: %s produced %lld NaN/Inf values (written as 0)\n", name.c_str(), (long long)bad);
+    }
+    out.counters = ctx.counters.merged();
+    out.metadata = metadataFor(r, name, params, ctx.settings, out.counters);
+    out.timingsMs = ctx.timings.entries();
+    return out;
+}
+
+void runRender(const RenderRequest& r) {
+    checkOutputs(r);
+    RenderOutcome out = renderToImage(r);
+    const auto t0 = std::chrono::steady_clock::now();
+    writeExr(out.image, r.output, out.metadata);
+    if (!r.preview.empty()) writePreview(out.image, r.preview);
+    out.timingsMs.emplace_back("write", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (!r.stats.empty()) writeStats(r, out, effectiveThreads(r.threads));
+    if (r.verbose) {
+        std::printf("%s -> %s (%dx%d)\ncounters:\n%s", r.input.c_str(), r.output.c_str(), out.image.width(),
+                    out.image.height(), Counters::table(out.counters).c_str());
+        std::printf("timings:\n");
+        for (const auto& [k, v] : out.timingsMs) std::printf("  %-24s %12.1f ms\n", k.c_str(), v);
+    }
+}
+
+}  // namespace weft

@@ -1,0 +1,40 @@
+#pragma once
+// A technique is a render operation registered by name: a parameter table,
+// a one-line summary, and a factory that validates parameters against the
+// scene at construction and returns an object whose render() makes the image.
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/image.hpp"
+#include "core/params.hpp"
+#include "core/registry.hpp"
+#include "core/render_context.hpp"
+#include "core/scene.hpp"
+
+namespace weft {
+
+class Technique {
+public:
+    virtual ~Technique() = default;
+    // Renders RGBA (premultiplied, scene-linear) plus any AOVs it produces.
+    virtual Image render(const Scene& scene, RenderContext& ctx) = 0;
+};
+
+struct TechniqueInfo {
+    std::string name;
+    std::string summary;
+    ParamTable params;
+    std::function<std::unique_ptr<Technique>(const Scene&, const ParamSet&)> create;
+};
+
+using TechniqueRegistry = NamedRegistry<TechniqueInfo>;
+TechniqueRegistry& techniques();
+
+// Registers a built-in technique from its own .cpp file:
+//   static TechniqueRegistrar reg{{"volume.raymarch", "...", table, factory}};
+struct TechniqueRegistrar {
+    explicit TechniqueRegistrar(TechniqueInfo info) { techniques().add(std::move(info)); }
+};
+
+}  // namespace weft

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Configures (Release, ccache when present) and builds weft into build/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc 2>/dev/null || echo 2)
+if [ ! -f build/CMakeCache.txt ]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+fi
+cmake --build build -j"$jobs"

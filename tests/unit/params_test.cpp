@@ -1,0 +1,71 @@
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "core/params.hpp"
+
+using namespace weft;
+
+namespace {
+
+ParamTable table() {
+    return ParamTable("demo", {floatParam("step", 0.5, 1e-4, 64, "step"), intParam("count", 4, 1, 16, "count"),
+                               boolParam("jitter", false, "jitter"), enumParam("mode", "a", {"a", "b"}, "mode")});
+}
+
+std::string errorOf(const std::map<std::string, std::string>& given) {
+    try {
+        table().parse(given);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(Params, DefaultsFillEveryParameterInTableOrder) {
+    const ParamSet set = table().parse({});
+    EXPECT_DOUBLE_EQ(set.getFloat("step"), 0.5);
+    EXPECT_EQ(set.getInt("count"), 4);
+    EXPECT_FALSE(set.getBool("jitter"));
+    EXPECT_EQ(set.getString("mode"), "a");
+    ASSERT_EQ(set.values().size(), 4u);
+    EXPECT_EQ(set.values()[0].first, "step");
+    EXPECT_FALSE(set.wasSet("step"));
+}
+
+TEST(Params, GivenValuesAreConvertedAndCanonical) {
+    const ParamSet set = table().parse({{"step", "0.250"}, {"jitter", "on"}, {"count", "8"}});
+    EXPECT_DOUBLE_EQ(set.getFloat("step"), 0.25);
+    EXPECT_EQ(set.values()[0].second, "0.25");
+    EXPECT_TRUE(set.getBool("jitter"));
+    EXPECT_TRUE(set.wasSet("step"));
+}
+
+TEST(Params, OutOfRangeNamesKeyValueAndRange) {
+    const std::string msg = errorOf({{"step", "100"}});
+    EXPECT_NE(msg.find("'step'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'100'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[1e-04, 64]"), std::string::npos) << msg;
+}
+
+TEST(Params, UnknownKeyListsValidOnes) {
+    const std::string msg = errorOf({{"stepp", "1"}});
+    EXPECT_NE(msg.find("unknown parameter 'stepp'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("step, count, jitter, mode"), std::string::npos) << msg;
+}
+
+TEST(Params, RejectsNonNumbersNonIntegersAndBadEnums) {
+    EXPECT_NE(errorOf({{"step", "abc"}}).find("not a number"), std::string::npos);
+    EXPECT_NE(errorOf({{"step", "nan"}}).find("not a number"), std::string::npos);
+    EXPECT_NE(errorOf({{"step", "inf"}}).find("not a number"), std::string::npos);
+    EXPECT_NE(errorOf({{"count", "2.5"}}).find("not an integer"), std::string::npos);
+    EXPECT_NE(errorOf({{"mode", "c"}}).find("one of a|b"), std::string::npos);
+    EXPECT_NE(errorOf({{"jitter", "maybe"}}).find("true|false"), std::string::npos);
+}
+
+TEST(Params, HelpTextListsEveryParameterWithRange) {
+    const std::string help = table().helpText();
+    for (const char* s : {"step", "count", "jitter", "mode", "[1, 16]", "one of a|b"})
+        EXPECT_NE(help.find(s), std::string::npos) << s;
+}
