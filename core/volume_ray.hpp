@@ -33,6 +33,11 @@ struct RayAccumulator {
         r += w * c.r, g += w * c.g, b += w * c.b;
         transmittance *= 1.0f - alpha;
     }
+    // A pre-integrated segment: opacity-weighted colour (r, g, b) and opacity a.
+    void addPremultiplied(float sr, float sg, float sb, float a) {
+        r += transmittance * sr, g += transmittance * sg, b += transmittance * sb;
+        transmittance *= 1.0f - a;
+    }
     float opacity() const { return 1.0f - transmittance; }
 };
 

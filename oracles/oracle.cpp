@@ -1,0 +1,10 @@
+#include "oracles/oracle.hpp"
+
+namespace weft {
+
+OracleRegistry& oracles() {
+    static OracleRegistry registry("oracle");
+    return registry;
+}
+
+}  // namespace weft

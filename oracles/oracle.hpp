@@ -1,0 +1,53 @@
+#pragma once
+// Sampling-distance oracles for adaptive volume integration (Kraus et al.
+// 2007). An oracle answers, for any point, how far apart samples may be
+// there without missing a feature. Each oracle is one .cpp file in this
+// folder that registers a builder by name; the builder precomputes a field
+// once per volume and transfer function, which renderers then sample at the
+// same points as the data (no virtual call per sample).
+#include <functional>
+#include <string>
+
+#include <openvdb/openvdb.h>
+
+#include "core/registry.hpp"
+#include "core/volume.hpp"
+
+namespace weft {
+
+struct OracleContext {
+    const Volume& volume;
+    double sliceSpacing;  // the minimum sampling distance, in voxels
+    int lmax;             // distances are useful up to 2^lmax slices
+    double epsilon;       // feature threshold (meaning depends on the oracle)
+};
+
+// Sampling distances in voxels, in the volume's index space: a grid sharing
+// the volume's transform, or one constant everywhere. Values are never
+// below ctx.sliceSpacing; renderers clamp to 2^lmax slices.
+struct OracleField {
+    openvdb::FloatGrid::ConstPtr distance;  // null when constant
+    float constant = 1.0f;                  // used when distance is null
+
+    // Distance at an index-space voxel (nearest-voxel lookup).
+    template <class Accessor>
+    float at(const Accessor& acc, const openvdb::Vec3d& indexPos) const {
+        if (!distance) return constant;
+        return acc.getValue(openvdb::Coord::round(indexPos));
+    }
+};
+
+struct OracleInfo {
+    std::string name;
+    std::string summary;
+    std::function<OracleField(const OracleContext&)> build;
+};
+
+using OracleRegistry = NamedRegistry<OracleInfo>;
+OracleRegistry& oracles();
+
+struct OracleRegistrar {
+    explicit OracleRegistrar(OracleInfo info) { oracles().add(std::move(info)); }
+};
+
+}  // namespace weft
