@@ -44,6 +44,7 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
     spec.z_channel = image.channelIndex("Z");
     spec.attribute("compression", "zip");
     spec.attribute("oiio:ColorSpace", "scene_linear");
+    spec.attribute("DateTime", "");  // OIIO would stamp the wall clock: same render, same bytes
     for (const auto& [key, value] : metadata) spec.attribute(key, value);
     writeWithOiio(path, spec, image.data().data());
 }

@@ -44,7 +44,8 @@ struct Scene {
 // default transfer function over the grid's value range) or builtin:NAME.
 // aspect is width/height of the image, used to frame scenes without a camera;
 // when not given, a scene file's own resolution decides, else 1.
-Scene loadScene(const std::string& input, std::optional<double> aspect = std::nullopt);
+// gridName picks the grid of a bare .vdb (default: "density", else the first float grid).
+Scene loadScene(const std::string& input, std::optional<double> aspect = std::nullopt, const std::string& gridName = "");
 
 // Names of the built-in scenes, "cloud|sphere".
 const char* builtinSceneNames();

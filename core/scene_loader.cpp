@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/json_doc.hpp"
+#include "core/params.hpp"
 #include "core/scene.hpp"
 
 namespace fs = std::filesystem;
@@ -44,7 +45,7 @@ public:
         if (!v.is_number()) fail(key, what_ + "." + key + " must be a number");
         const double d = v.get<double>();
         if (!(d >= lo && d <= hi))
-            fail(key, what_ + "." + key + " = " + v.dump() + " is outside [" + json(lo).dump() + ", " + json(hi).dump() + "]");
+            fail(key, what_ + "." + key + " = " + v.dump() + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
         return d;
     }
     std::string string(const std::string& key, const std::string& def) const {
@@ -117,18 +118,15 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir) {
     Volume vol;
     const bool fromFile = r.has("file"), procedural = r.has("procedural");
     if (fromFile == procedural) r.failAt(r.pointer(), "a volume needs exactly one of 'file' or 'procedural'");
+    // Values are read first so their own errors keep their own positions.
+    fs::path file = r.string("file", "");
+    if (file.is_relative()) file = baseDir / file;
+    const std::string grid = r.string("grid", ""), kind = r.string("procedural", "");
+    const int res = int(r.number("resolution", 128, 4, 1024));
+    const auto seed = std::uint64_t(r.number("seed", 1, 0, 4294967295.0));
     try {
-        if (fromFile) {
-            fs::path file = r.string("file", "");
-            if (file.is_relative()) file = baseDir / file;
-            vol.source = file.string();
-            vol.grid = readFloatGrid(vol.source, r.string("grid", ""));
-        } else {
-            const std::string kind = r.string("procedural", "");
-            const int res = int(r.number("resolution", 128, 4, 1024));
-            vol.source = "procedural:" + kind;
-            vol.grid = makeProceduralGrid(kind, res, std::uint64_t(r.number("seed", 1, 0, 4294967295.0)));
-        }
+        vol.source = fromFile ? file.string() : "procedural:" + kind;
+        vol.grid = fromFile ? readFloatGrid(vol.source, grid) : makeProceduralGrid(kind, res, seed);
     } catch (const Error& e) {
         r.fail(fromFile ? "file" : "procedural", e.what());
     }
@@ -228,10 +226,10 @@ Scene sceneAroundVolume(Volume vol, const std::string& source, double aspect) {
     return scene;
 }
 
-Scene loadBareVdb(const std::string& path, double aspect) {
+Scene loadBareVdb(const std::string& path, double aspect, const std::string& gridName) {
     Volume vol;
     vol.source = path;
-    vol.grid = readFloatGrid(path, "");
+    vol.grid = readFloatGrid(path, gridName);
     vol.name = vol.grid->getName();
     computeValueRange(vol);
     vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
@@ -270,10 +268,11 @@ BBoxd Scene::worldBox() const {
     return box;
 }
 
-Scene loadScene(const std::string& input, std::optional<double> aspect) {
+Scene loadScene(const std::string& input, std::optional<double> aspect, const std::string& gridName) {
+    if (!gridName.empty() && lowerExtension(input) != ".vdb") throw Error("--grid applies to a bare .vdb input; a scene file names its grids itself");
     if (input.rfind("builtin:", 0) == 0) return loadBuiltin(input.substr(8), aspect.value_or(1.0));
     const std::string ext = lowerExtension(input);
-    if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0));
+    if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0), gridName);
     if (ext == ".json") {
         if (!fs::exists(input)) throw Error("scene '" + input + "': no such file");
         return loadJsonScene(input, aspect);

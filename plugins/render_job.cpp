@@ -102,7 +102,7 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         aspect = double(w) / h;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const Scene scene = loadScene(r.input, aspect);
+    const Scene scene = loadScene(r.input, aspect, r.grid);
     ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     ctx.settings = settingsFor(r, scene);
 

@@ -19,6 +19,7 @@ struct RenderRequest {
     std::string output;           // .exr
     std::string preview;          // optional .png/.jpg
     std::string stats;            // optional .json
+    std::string grid;             // grid of a bare .vdb input
     std::optional<std::string> technique;
     std::vector<std::string> sets;  // "key=value"
     std::optional<std::string> resolution;  // "WxH"

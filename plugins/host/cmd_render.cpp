@@ -13,6 +13,7 @@ const CommandRegistrar registrar{{"render", 10, [](CLI::App& app) {
     cmd->add_option("-o,--output", r->output, "output EXR (RGBA + AOVs + metadata)")->required();
     cmd->add_option("--preview", r->preview, "also write a display-referred PNG/JPEG through OpenColorIO");
     cmd->add_option("--stats", r->stats, "write counters, timings and parameters as JSON");
+    cmd->add_option("--grid", r->grid, "grid to render from a bare .vdb (default: density, else the first float grid)");
     cmd->add_option("--technique", r->technique, "technique name (weft --list-plugins)");
     cmd->add_option("--set", r->sets, "technique parameter key=value (weft help TECHNIQUE)")->allow_extra_args(false);
     cmd->add_option("--res", r->resolution, "image size WxH (default: the scene's, else 512x512)");

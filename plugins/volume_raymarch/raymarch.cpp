@@ -47,7 +47,9 @@ public:
         const Volume& vol = scene.volumes.front();
         if (params_.skipEmpty && vol.tf.lookup(vol.grid->background()).extinction > 0)
             throw Error("volume.raymarch: skip_empty=true needs a transfer function that is transparent at the grid's background value");
-        if (params_.skipEmpty) intersector_.emplace(*vol.grid, 1);  // one voxel of dilation covers trilinear support
+        // Trilinear support reaches the 26 neighbours of an active voxel; three
+        // face-neighbour dilations cover them all (Manhattan distance <= 3).
+        if (params_.skipEmpty) intersector_.emplace(*vol.grid, 3);
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {

@@ -1,0 +1,128 @@
+// The weft host end to end: renders, determinism across thread counts,
+// metadata, stats JSON, help, plugin listing, external plugins and diff.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image_io.hpp"
+#include "tests/support/test_support.hpp"
+#include "tests/support/vdb_fixtures.hpp"
+
+using namespace weft::test;
+
+namespace {
+
+std::string metaValue(const weft::Metadata& md, const std::string& key) {
+    for (const auto& [k, v] : md)
+        if (k == key) return v;
+    return "";
+}
+
+TEST(RenderCli, SameSeedSameBytesOnOneAndTwoThreads) {
+    TempDir dir;
+    const std::string common = "render builtin:cloud --res 64x48 --spp 2 --set jitter=true --seed 7 ";
+    ASSERT_EQ(runWeft(common + "--threads 1 -o " + (dir / "t1.exr").string()).status, 0);
+    ASSERT_EQ(runWeft(common + "--threads 2 -o " + (dir / "t2.exr").string()).status, 0);
+    const std::string a = readBytes(dir / "t1.exr"), b = readBytes(dir / "t2.exr");
+    ASSERT_GT(a.size(), 1000u);
+    EXPECT_TRUE(a == b) << "EXR bytes differ between 1 and 2 threads";
+    // A different seed must change the jittered image.
+    ASSERT_EQ(runWeft(common.substr(0, common.find("--seed")) + "--seed 8 -o " + (dir / "s8.exr").string()).status, 0);
+    EXPECT_NE(readBytes(dir / "s8.exr"), a);
+}
+
+TEST(RenderCli, WritesMetadataStatsAndPreview) {
+    TempDir dir;
+    const auto r = runWeft("render builtin:sphere --res 32x32 --set step=0.25 --seed 3 -o " + (dir / "o.exr").string() +
+                           " --preview " + (dir / "o.png").string() + " --stats " + (dir / "s.json").string() + " -v");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("volume.samples"), std::string::npos);  // -v prints the counter table
+    weft::Metadata md;
+    const weft::Image img = weft::readImage((dir / "o.exr").string(), &md);
+    EXPECT_EQ(img.width(), 32);
+    EXPECT_EQ(img.channelNames(), (std::vector<std::string>{"R", "G", "B", "A"}));
+    EXPECT_EQ(metaValue(md, "weft:technique"), "volume.raymarch");
+    EXPECT_EQ(metaValue(md, "weft:param:step"), "0.25");
+    EXPECT_EQ(metaValue(md, "weft:param:jitter"), "false");
+    EXPECT_EQ(metaValue(md, "weft:seed"), "3");
+    EXPECT_EQ(metaValue(md, "weft:complete"), "1");
+    EXPECT_FALSE(metaValue(md, "weft:version").empty());
+    const auto stats = nlohmann::json::parse(readBytes(dir / "s.json"));
+    EXPECT_EQ(stats["counters"]["rays.camera"].get<long long>(), 32 * 32);
+    EXPECT_EQ(std::to_string(stats["counters"]["volume.samples"].get<long long>()), metaValue(md, "weft:counter:volume.samples"));
+    EXPECT_GT(stats["counters"]["volume.samples"].get<long long>(), 32 * 32);
+    EXPECT_TRUE(stats["timings_ms"].contains("render"));
+    const weft::Image png = weft::readImage((dir / "o.png").string());
+    EXPECT_EQ(png.channelCount(), 3);
+    EXPECT_EQ(png.width(), 32);
+}
+
+TEST(RenderCli, BareVdbIsFramedAndRendered) {
+    TempDir dir;
+    writeProceduralVdb(dir / "sphere.vdb", "sphere", 16);
+    const auto r = runWeft("render " + (dir / "sphere.vdb").string() + " --res 32x32 -o " + (dir / "v.exr").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    const weft::Image img = weft::readImage((dir / "v.exr").string());
+    // Framed: the centre is covered, the corners are empty.
+    EXPECT_GT(img.at(16, 16, 3), 0.2f);
+    EXPECT_EQ(img.at(0, 0, 3), 0.0f);
+}
+
+TEST(RenderCli, ListPluginsAndHelpComeFromTheParameterTable) {
+    const auto list = runWeft("--list-plugins");
+    ASSERT_EQ(list.status, 0);
+    EXPECT_NE(list.output.find("volume.raymarch"), std::string::npos);
+    const auto help = runWeft("help volume.raymarch");
+    ASSERT_EQ(help.status, 0);
+    for (const char* s : {"step", "jitter", "ert", "skip_empty", "[1e-04, 64]", "default 0.5"})
+        EXPECT_NE(help.output.find(s), std::string::npos) << s;
+    const auto unknown = runWeft("help volume.nope");
+    EXPECT_NE(unknown.status, 0);
+    EXPECT_NE(unknown.output.find("unknown technique 'volume.nope'"), std::string::npos);
+}
+
+TEST(RenderCli, ExternalPluginOnPluginPath) {
+    const std::string env = "WEFT_PLUGIN_PATH=" + std::string(WEFT_TEST_PLUGIN_DIR);
+    const auto list = runWeft("--list-plugins", env);
+    ASSERT_EQ(list.status, 0) << list.output;
+    EXPECT_NE(list.output.find("example.gradient"), std::string::npos) << list.output;
+    EXPECT_EQ(runWeft("--list-plugins").output.find("example.gradient"), std::string::npos);
+    TempDir dir;
+    const auto r = runWeft("render builtin:sphere --technique example.gradient --set gain=2 --res 16x4 -o " +
+                           (dir / "g.exr").string(), env);
+    ASSERT_EQ(r.status, 0) << r.output;
+    const weft::Image img = weft::readImage((dir / "g.exr").string());
+    EXPECT_NEAR(img.at(15, 0, 0), 2.0f * 15.5f / 16.0f, 1e-6);
+    EXPECT_NEAR(img.at(0, 3, 1), 2.0f * 0.5f / 16.0f, 1e-6);
+    const auto bad = runWeft("render builtin:sphere --technique example.gradient --set gain=11 --res 4x4 -o " +
+                             (dir / "b.exr").string(), env);
+    EXPECT_NE(bad.output.find("allowed [0, 10]"), std::string::npos) << bad.output;
+}
+
+TEST(RenderCli, PluginWithWrongAbiIsRefusedClearly) {
+    TempDir dir;
+    writeText(dir / "broken.weft.so", "not a shared library");
+    const auto r = runWeft("--list-plugins", "WEFT_PLUGIN_PATH=" + dir.path().string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("plugin '" + (dir / "broken.weft.so").string() + "'"), std::string::npos) << r.output;
+}
+
+TEST(DiffCli, ReportsMetricsAndFailsAboveThreshold) {
+    TempDir dir;
+    const std::string a = (dir / "a.exr").string(), b = (dir / "b.exr").string();
+    ASSERT_EQ(runWeft("render builtin:sphere --res 32x32 --set step=1 -o " + a).status, 0);
+    ASSERT_EQ(runWeft("render builtin:sphere --res 32x32 --set step=0.25 -o " + b).status, 0);
+    const auto same = runWeft("diff " + a + " " + a + " --fail 0");
+    EXPECT_EQ(same.status, 0) << same.output;
+    EXPECT_NE(same.output.find("inf"), std::string::npos);  // PSNR of identical images
+    const auto differ = runWeft("diff " + a + " " + b);
+    EXPECT_EQ(differ.status, 0);
+    for (const char* s : {"RMSE", "relMSE", "PSNR", "SSIM", "maxAbs", "all"}) EXPECT_NE(differ.output.find(s), std::string::npos);
+    const auto fail = runWeft("diff " + a + " " + b + " --fail 0.0000001");
+    EXPECT_EQ(fail.status, 2) << fail.output;
+    const auto missing = runWeft("diff " + a + " " + (dir / "none.exr").string());
+    EXPECT_EQ(missing.status, 1);
+    EXPECT_NE(missing.output.find("no such file"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,90 @@
+// Bad input: one clear line on stderr naming the problem, non-zero exit, no
+// output file created, and an existing file at the output path untouched.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "tests/support/test_support.hpp"
+#include "tests/support/vdb_fixtures.hpp"
+
+using namespace weft::test;
+
+namespace {
+
+struct BadInputCase {
+    const char* name;
+    std::string args;      // everything after "render", before -o
+    const char* expected;  // a fragment the error line must contain
+};
+
+void PrintTo(const BadInputCase& c, std::ostream* os) { *os << c.name; }
+
+class RenderErrors : public ::testing::TestWithParam<BadInputCase> {
+protected:
+    void SetUp() override {
+        writeProceduralVdb(dir / "sphere.vdb", "sphere", 16);
+        writeText(dir / "notvdb.vdb", "this is not a vdb file\n");
+        writeText(dir / "bad.json", "{\n  \"volumes\": [ { \"procedural\": \"sphere\", \"resolution\": 16 } ],\n  \"camra\": {}\n}\n");
+        writeText(dir / "syntax.json", "{\n  \"volumes\": [\n    { \"procedural\": \"sphere\" },\n  ]\n}\n");
+        writeText(dir / "range.json", "{\n  \"volumes\": [ { \"procedural\": \"sphere\", \"resolution\": 2 } ]\n}\n");
+    }
+    std::string substitute(std::string args) const {
+        for (std::size_t at; (at = args.find("$D")) != std::string::npos;) args.replace(at, 2, dir.path().string());
+        return args;
+    }
+    TempDir dir;
+};
+
+TEST_P(RenderErrors, OneLineNonZeroExitNoOutput) {
+    const BadInputCase& c = GetParam();
+    const auto out = dir / "out.exr";
+    const CommandResult r = runWeft("render " + substitute(c.args) + " -o " + out.string());
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_EQ(r.output.rfind("weft: error: ", 0), 0u) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST_P(RenderErrors, ExistingOutputIsLeftUntouched) {
+    const BadInputCase& c = GetParam();
+    const auto out = dir / "keep.exr";
+    writeText(out, "precious user file");
+    const CommandResult r = runWeft("render " + substitute(c.args) + " -o " + out.string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(readBytes(out), "precious user file");
+    for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+        EXPECT_EQ(e.path().filename().string().find(".weft-tmp-"), std::string::npos) << e.path();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadInput, RenderErrors,
+    ::testing::Values(
+        BadInputCase{"MissingFile", "$D/nope.vdb", "no such file"},
+        BadInputCase{"NotAVdb", "$D/notvdb.vdb", "not an OpenVDB file"},
+        BadInputCase{"NoSuchGrid", "$D/sphere.vdb --grid temperature", "no grid named 'temperature' (grids: density)"},
+        BadInputCase{"UnknownTechnique", "builtin:sphere --technique volume.nope", "unknown technique 'volume.nope' (known:"},
+        BadInputCase{"UnknownKey", "builtin:sphere --set stpe=1", "unknown parameter 'stpe'; valid parameters: step"},
+        BadInputCase{"OutOfRange", "builtin:sphere --set step=-1", "bad value '-1' for parameter 'step' (float, allowed [1e-04, 64])"},
+        BadInputCase{"NotANumber", "builtin:sphere --set step=abc", "not a number"},
+        BadInputCase{"MissingEquals", "builtin:sphere --set step", "expected key=value"},
+        BadInputCase{"BadResolution", "builtin:sphere --res 0x10", "bad resolution '0x10'"},
+        BadInputCase{"BadResolutionText", "builtin:sphere --res big", "bad resolution 'big'"},
+        BadInputCase{"UnknownBuiltin", "builtin:teapot", "unknown built-in scene 'builtin:teapot'"},
+        BadInputCase{"UnknownInputKind", "$D/scene.txt", "expected a scene .json, a .vdb file"},
+        BadInputCase{"UnknownSceneKey", "$D/bad.json", "bad.json:3:3: unknown key 'camra' in scene; valid keys: camera"},
+        BadInputCase{"SceneSyntax", "$D/syntax.json", "syntax.json:4:3: JSON syntax error"},
+        BadInputCase{"SceneValueRange", "$D/range.json", "range.json:2:56: volume.resolution = 2 is outside [4, 1024]"},
+        BadInputCase{"BadSpp", "builtin:sphere --spp 0", "--spp 0 is outside"},
+        BadInputCase{"OutputFolderMissing", "builtin:sphere --res 8x8 --preview $D/nofolder/p.png", "folder '"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(RenderOutput, MustBeExr) {
+    TempDir dir;
+    const CommandResult r = runWeft("render builtin:sphere --res 8x8 -o " + (dir / "out.png").string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("must be an .exr file"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+}
+
+}  // namespace

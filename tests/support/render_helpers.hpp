@@ -1,0 +1,24 @@
+#pragma once
+// In-process renders for tests (no files), through the same path as the CLI.
+#include <string>
+#include <vector>
+
+#include "core/image_compare.hpp"
+#include "plugins/render_job.hpp"
+
+namespace weft::test {
+
+inline RenderOutcome render(const std::string& input, const std::string& res, std::vector<std::string> sets,
+                            std::string technique = "volume.raymarch", int threads = 0) {
+    RenderRequest r;
+    r.input = input;
+    r.resolution = res;
+    r.sets = std::move(sets);
+    r.technique = std::move(technique);
+    r.threads = threads;
+    return renderToImage(r);
+}
+
+inline double rmse(const Image& a, const Image& b) { return compareImages(a, b).overall.rmse; }
+
+}  // namespace weft::test
