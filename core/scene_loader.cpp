@@ -131,7 +131,7 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir) {
         r.fail(fromFile ? "file" : "procedural", e.what());
     }
     vol.name = vol.grid->getName();
-    computeValueRange(vol);
+    computeStatistics(vol);
     if (r.has("transfer_function")) {
         ObjectReader tf(r.doc(), r.child("transfer_function"), "transfer_function", {"range", "points"});
         vol.tf = readTransferFunction(tf, vol);
@@ -231,7 +231,7 @@ Scene loadBareVdb(const std::string& path, double aspect, const std::string& gri
     vol.source = path;
     vol.grid = readFloatGrid(path, gridName);
     vol.name = vol.grid->getName();
-    computeValueRange(vol);
+    computeStatistics(vol);
     vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
     return sceneAroundVolume(std::move(vol), path, aspect);
 }
@@ -243,7 +243,7 @@ Scene loadBuiltin(const std::string& name, double aspect) {
     vol.source = "procedural:" + name;
     vol.grid = makeProceduralGrid(name, name == "cloud" ? 128 : 64, 1);
     vol.name = vol.grid->getName();
-    computeValueRange(vol);
+    computeStatistics(vol);
     vol.tf = name == "cloud"
                  ? TransferFunction(0.0, 1.0, {{0.0, {0.25, 0.35, 0.7}, 0.0}, {0.25, {0.7, 0.75, 0.9}, 0.015}, {0.6, {1.0, 0.9, 0.75}, 0.06}, {1.0, {1.0, 0.7, 0.4}, 0.12}})
                  : TransferFunction(0.0, 1.0, {{0.0, {1, 1, 1}, 0.0}, {1.0, {1, 1, 1}, 0.05}});

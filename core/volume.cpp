@@ -16,7 +16,7 @@ void initVdb() {
 }
 
 openvdb::CoordBBox Volume::indexBox() const {
-    openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+    openvdb::CoordBBox box = activeBox;
     box.expand(1);
     return box;
 }
@@ -58,7 +58,8 @@ openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string
     return grid;
 }
 
-void computeValueRange(Volume& volume) {
+void computeStatistics(Volume& volume) {
+    volume.activeBox = volume.grid->evalActiveVoxelBoundingBox();
     if (volume.grid->activeVoxelCount() == 0 && volume.grid->tree().activeTileCount() == 0) {
         volume.valueMin = volume.valueMax = volume.grid->background();
         return;

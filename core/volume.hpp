@@ -16,7 +16,8 @@ struct Volume {
     std::string source;  // file path or "procedural:<kind>"
     openvdb::FloatGrid::ConstPtr grid;
     TransferFunction tf;
-    float valueMin = 0, valueMax = 0;  // over active values
+    float valueMin = 0, valueMax = 0;      // over active values
+    openvdb::CoordBBox activeBox;          // active voxels' bounding box
 
     // Index-space box that holds every voxel whose value can be non-zero,
     // padded by one voxel for trilinear support.
@@ -31,8 +32,9 @@ void initVdb();
 // float grid. Errors name the file and list the grids it holds.
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName);
 
-// Fills min/max from the grid's active values.
-void computeValueRange(Volume& volume);
+// Fills the value range and the active bounding box (once per volume: both
+// walk the whole tree).
+void computeStatistics(Volume& volume);
 
 // Procedural grids (deterministic), sized res^3 voxels, voxel size 1/res so
 // the object fills the unit cube [-0.5, 0.5]^3 in world space:
