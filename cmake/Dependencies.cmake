@@ -25,5 +25,7 @@ find_library(OSD_CPU osdCPU REQUIRED)
 find_path(OSD_INCLUDE_DIR opensubdiv/far/topologyRefiner.h REQUIRED)
 
 find_package(CLI11 CONFIG REQUIRED)
+# gzip-compressed raw volumes (weft convert).
+find_package(Boost REQUIRED COMPONENTS iostreams)
 find_package(nlohmann_json 3 CONFIG REQUIRED)
 find_package(Threads REQUIRED)
