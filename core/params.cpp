@@ -111,7 +111,10 @@ std::pair<double, std::string> convert(const std::string& owner, const ParamSpec
 
 ParamTable::ParamTable(std::string owner, std::vector<ParamSpec> specs)
     : owner_(std::move(owner)), specs_(std::move(specs)) {
-    for (const ParamSpec& spec : specs_) convert(owner_, spec, spec.defaultValue);  // defaults must be valid
+    // Defaults must be valid. Checks that consult a registry run at parse time:
+    // registries fill up during static initialisation, in no fixed order.
+    for (const ParamSpec& spec : specs_)
+        if (!spec.check) convert(owner_, spec, spec.defaultValue);
 }
 
 ParamSet ParamTable::parse(const std::map<std::string, std::string>& given) const {

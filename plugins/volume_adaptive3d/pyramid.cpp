@@ -1,0 +1,107 @@
+#include "plugins/volume_adaptive3d/pyramid.hpp"
+
+#include <algorithm>
+
+namespace weft {
+
+Pyramid::Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& slices, int lmax, int paddedWidth,
+                 int paddedHeight, int imageWidth, int imageHeight) {
+    const float background = float(volume.tf.normalize(volume.grid->background()));
+    for (int l = 0; l <= lmax; ++l) {
+        PyramidLevel level;
+        level.rays = makeLevelRays(camera, volume, slices, l, paddedWidth, paddedHeight, imageWidth, imageHeight);
+        level.s.assign(level.rays.dir.size(), background);
+        level.d.assign(level.rays.dir.size(), 1.0f);
+        levels_.push_back(std::move(level));
+    }
+    const std::size_t n = levels_[0].rays.dir.size();
+    sPrev.assign(n, background);
+    iPrev.assign(n, 0);
+    color.assign(n, SegmentCompositor{});
+}
+
+Image Pyramid::image(int width, int height) const {
+    Image img = Image::rgba(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const SegmentCompositor& c = color[levels_[0].rays.index(x, y)];
+            float* px = img.pixel(x, y);
+            px[0] = c.r, px[1] = c.g, px[2] = c.b, px[3] = c.a;
+        }
+    return img;
+}
+
+SliceWorker::SliceWorker(SliceContext& sc)
+    : sc_(sc), data_(sc.volume),
+      oracleAccessor_(sc.field.distance ? sc.field.distance->getConstAccessor() : sc.volume.grid->getConstAccessor()),
+      outsideDistance_(sc.field.distance ? sc.field.distance->background() : sc.field.constant) {}
+
+void SliceWorker::row(Pyramid& pyramid, int l, int lslice, int slice, int y) {
+    PyramidLevel& level = pyramid.level(l);
+    const float sampleBelow = float(2 << l);  // 2^(l+1)
+    for (int x = 0; x < level.rays.width; ++x) {
+        const int idx = level.rays.index(x, y);
+        if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesize(pyramid, l, x, y, idx);
+        const float d = level.d[idx];
+        const bool accumulate = l == 0 && isDue(d, lslice, sc_.lmax);
+        if (l == sc_.lmax || d < sampleBelow) sample(level, idx, slice);
+        if (accumulate) composite(pyramid, idx, slice);
+    }
+}
+
+// Figures 5-7: bilinear interpolation of the coarser level at this pixel's
+// centre, i.e. weights 9/16, 3/16, 3/16, 1/16 of the four nearest parents.
+void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx) {
+    PyramidLevel& fine = pyramid.level(l);
+    const PyramidLevel& coarse = pyramid.level(l + 1);
+    const int cw = coarse.rays.width, ch = coarse.rays.height;
+    const int x0 = (x - 1) >> 1, y0 = (y - 1) >> 1;                   // parent at or left/above the centre
+    const float fx = (x & 1) ? 0.25f : 0.75f, fy = (y & 1) ? 0.25f : 0.75f;  // weight of the second parent
+    const int xa = std::clamp(x0, 0, cw - 1), xb = std::clamp(x0 + 1, 0, cw - 1);
+    const int ya = std::clamp(y0, 0, ch - 1), yb = std::clamp(y0 + 1, 0, ch - 1);
+    auto blend = [&](const std::vector<float>& v) {
+        const float top = (1 - fx) * v[ya * cw + xa] + fx * v[ya * cw + xb];
+        const float bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
+        return (1 - fy) * top + fy * bottom;
+    };
+    fine.s[idx] = blend(coarse.s);
+    fine.d[idx] = blend(coarse.d);
+    ++syntheses_;
+}
+
+void SliceWorker::sample(PyramidLevel& level, int idx, int slice) {
+    const LevelRays& rays = level.rays;
+    const bool inside = slice >= rays.first[idx] && slice <= rays.last[idx];
+    float dVoxels = outsideDistance_;
+    if (inside) {
+        const openvdb::Vec3d p = sc_.slices.eye + rays.dir[idx] * sc_.slices.t(slice);
+        level.s[idx] = data_.sample(p);
+        dVoxels = sc_.field.at(oracleAccessor_, p);
+        ++samples_, ++oracleSamples_;
+    } else {
+        level.s[idx] = data_.background();
+    }
+    const float maxSlices = float(1 << sc_.lmax);
+    level.d[idx] = std::clamp(float(dVoxels / sc_.slices.spacing), 1.0f, maxSlices);
+}
+
+// Figure 8: the segment from the previous composite to this slice.
+void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
+    const float s0 = pyramid.level(0).s[idx];
+    if (slice > 0) {
+        const int length = slice - pyramid.iPrev[idx];
+        pyramid.color[idx].add(sc_.tables.forSlices(length).lookup(0, pyramid.sPrev[idx], s0));
+        ++composites_;
+    }
+    pyramid.sPrev[idx] = s0;
+    pyramid.iPrev[idx] = slice;
+}
+
+void SliceWorker::flush() {
+    sc_.counters.add("volume.samples", samples_);
+    sc_.counters.add("oracle.samples", oracleSamples_);
+    sc_.counters.add("synthesis.ops", syntheses_);
+    sc_.counters.add("composite.ops", composites_);
+}
+
+}  // namespace weft

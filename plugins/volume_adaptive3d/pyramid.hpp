@@ -1,0 +1,78 @@
+#pragma once
+// The image pyramid of volume.adaptive3d: per level, the rays and the
+// stored data value s and oracle distance d (in slices) of every pixel;
+// on level 0 also the previous composite's slice and value and the
+// accumulated colour. SliceWorker is the body of Figure 4 for one row.
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <vector>
+
+#include "core/counters.hpp"
+#include "core/image.hpp"
+#include "core/segment_tables.hpp"
+#include "core/slices.hpp"
+#include "oracles/oracle.hpp"
+#include "plugins/slice_renderer.hpp"
+
+namespace weft {
+
+// l_slice: trailing zeros of the slice index, at most lmax (Table 1).
+inline int sliceLevel(int slice, int lmax) {
+    return slice == 0 ? lmax : std::min(std::countr_zero(unsigned(slice)), lmax);
+}
+
+// Whether a pixel whose stored distance is d (slices) is composited on a
+// slice of level lslice: the skipping rule d >= 2^(lslice+1) negated.
+inline bool isDue(float d, int lslice, int lmax) { return lslice == lmax || d < float(2 << lslice); }
+
+struct PyramidLevel {
+    LevelRays rays;
+    std::vector<float> s;  // normalised data value
+    std::vector<float> d;  // sampling distance, slices
+};
+
+class Pyramid {
+public:
+    Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& slices, int lmax, int paddedWidth,
+            int paddedHeight, int imageWidth, int imageHeight);
+    PyramidLevel& level(int l) { return levels_[l]; }
+    // Level-0 compositing state.
+    std::vector<float> sPrev;
+    std::vector<int> iPrev;
+    std::vector<SegmentCompositor> color;
+    // The accumulated colour, cropped to the image.
+    Image image(int width, int height) const;
+
+private:
+    std::vector<PyramidLevel> levels_;
+};
+
+struct SliceContext {
+    const Volume& volume;
+    const OracleField& field;
+    const SliceSetup& slices;
+    SegmentTables& tables;
+    int lmax;
+    Counters& counters;
+};
+
+class SliceWorker {
+public:
+    explicit SliceWorker(SliceContext& sc);
+    void row(Pyramid& pyramid, int l, int lslice, int slice, int y);
+    void flush();  // adds this worker's counts to the counters
+
+private:
+    void synthesize(Pyramid& pyramid, int l, int x, int y, int idx);
+    void sample(PyramidLevel& level, int idx, int slice);
+    void composite(Pyramid& pyramid, int idx, int slice);
+
+    SliceContext& sc_;
+    ScalarSampler data_;
+    openvdb::FloatGrid::ConstAccessor oracleAccessor_;
+    float outsideDistance_;
+    std::int64_t samples_ = 0, oracleSamples_ = 0, syntheses_ = 0, composites_ = 0;
+};
+
+}  // namespace weft
