@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Reproduces Tables 2 and 3 of Kraus et al. 2007 with weft.
+
+For each data set (the aneurism, and the Gaffer smoke in place of the
+abdomen, which is not public) it renders at 512x512:
+  volume.preint                       (the paper's "tex.-based" column)
+  volume.adaptive3d oracle=minimum    (worst-case overhead; must equal preint)
+  volume.adaptive3d oracle=gradient_alpha
+and prints sampling operations, oracle samples, syntheses, composites, the
+render time (2 threads), and the RMSE against volume.preint at the same
+slice spacing. Fragment counts come from hwsim replays (not in this table).
+
+Usage: bench/kraus_tables.py [--data DIR] [--out DIR] [--res WxH] [--threads N]
+DIR defaults to ../shared/data beside the project (aneurism.raw.gz, smoke.vdb).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WEFT = os.path.join(ROOT, "build", "bin", "weft")
+
+COLUMNS = [
+    ("tex.-based", "volume.preint", []),
+    ("adaptive min.", "volume.adaptive3d", ["oracle=minimum"]),
+    ("adaptive |grad a|>eps", "volume.adaptive3d", ["oracle=gradient_alpha"]),
+]
+ROWS = ["volume.samples", "oracle.samples", "synthesis.ops", "composite.ops", "slices"]
+
+
+def run(args):
+    proc = subprocess.run(args, capture_output=True, text=True)
+    if proc.returncode != 0:
+        sys.exit("bench: command failed: %s\n%s" % (" ".join(args), proc.stderr.strip()))
+    return proc.stdout
+
+
+def prepare_aneurism(data, out):
+    vdb = os.path.join(out, "aneurism.vdb")
+    if not os.path.exists(vdb):
+        run([WEFT, "convert", os.path.join(data, "aneurism.raw.gz"), "--dims", "256,256,256",
+             "--type", "u8", "-o", vdb])
+    scene = os.path.join(out, "aneurism.json")
+    with open(os.path.join(ROOT, "scenes", "aneurism.json")) as src, open(scene, "w") as dst:
+        dst.write(src.read())
+    return scene
+
+
+def render(scene, name, technique, sets, out, res, threads):
+    exr = os.path.join(out, name + ".exr")
+    stats = os.path.join(out, name + ".json")
+    args = [WEFT, "render", scene, "--technique", technique, "--res", res, "--threads", str(threads),
+            "-o", exr, "--preview", os.path.join(out, name + ".png"), "--stats", stats]
+    for s in sets:
+        args += ["--set", s]
+    run(args)
+    with open(stats) as f:
+        return exr, json.load(f)
+
+
+def rmse(a, b):
+    for line in run([WEFT, "diff", a, b]).splitlines():
+        if line.startswith("all "):
+            return float(line.split()[1])
+    return float("nan")
+
+
+def table(title, scene, tag, out, res, threads):
+    results = []
+    for label, technique, sets in COLUMNS:
+        exr, stats = render(scene, tag + "_" + label.split()[0].strip(".").replace("|", ""), technique, sets, out, res, threads)
+        results.append((label, exr, stats))
+    ref = results[0][1]
+    print("\n%s (%s, %d threads)" % (title, res, threads))
+    print("%-22s" % "" + "".join("%24s" % r[0] for r in results))
+    for row in ROWS:
+        print("%-22s" % row + "".join("%24s" % "{:,}".format(r[2]["counters"].get(row, 0)) for r in results))
+    print("%-22s" % "render time (s)" + "".join("%24.3f" % (r[2]["timings_ms"]["render"] / 1000) for r in results))
+    oracle = [r[2]["timings_ms"].get("oracle", 0) / 1000 for r in results]
+    print("%-22s" % "  of it oracle (s)" + "".join("%24.3f" % o for o in oracle))
+    print("%-22s" % "RMSE vs tex.-based" + "".join("%24.6f" % rmse(r[1], ref) for r in results))
+    base = results[0][2]
+    last = results[-1][2]
+    print("gradient_alpha: %.1fx fewer volume samples, %.2fx the speed of tex.-based" % (
+        base["counters"]["volume.samples"] / max(1, last["counters"]["volume.samples"]),
+        base["timings_ms"]["render"] / last["timings_ms"]["render"]))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--data", default=os.path.join(ROOT, "..", "shared", "data"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "build", "bench-kraus"))
+    ap.add_argument("--res", default="512x512")
+    ap.add_argument("--threads", type=int, default=2)
+    a = ap.parse_args()
+    for f in ("aneurism.raw.gz", "smoke.vdb"):
+        if not os.path.exists(os.path.join(a.data, f)):
+            sys.exit("bench: %s not found in %s (use --data DIR)" % (f, a.data))
+    os.makedirs(a.out, exist_ok=True)
+    table("Table 2: aneurism 256^3", prepare_aneurism(a.data, a.out), "aneurism", a.out, a.res, a.threads)
+    table("Table 3: Gaffer smoke (abdomen not public)", os.path.join(a.data, "smoke.vdb"), "smoke", a.out, a.res, a.threads)
+
+
+if __name__ == "__main__":
+    main()
