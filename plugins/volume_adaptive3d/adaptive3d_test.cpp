@@ -2,7 +2,10 @@
 // under the minimum oracle, determinism, and savings with a coarse oracle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/rng.hpp"
+#include "tests/support/test_support.hpp"
 #include "oracles/oracle.hpp"
 #include "plugins/volume_adaptive3d/pyramid.hpp"
 #include "tests/support/render_helpers.hpp"
@@ -101,4 +104,29 @@ TEST(Adaptive3d, UnknownOracleIsAClearError) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("unknown oracle 'nope' (known:"), std::string::npos) << e.what();
     }
+}
+
+TEST(Adaptive3d, ExtremesStayFiniteAndBounded) {
+    test::TempDir dir;
+    test::writeText(dir / "dense.json", R"({"volumes": [{"procedural": "cloud", "resolution": 16,
+        "transfer_function": {"points": [{"s": 0, "extinction": 0}, {"s": 0.01, "color": [2, 1, 0], "extinction": 1e30}]}}]})");
+    test::writeText(dir / "thin.json", R"({"volumes": [{"procedural": "cloud", "resolution": 16,
+        "transfer_function": {"points": [{"s": 0, "extinction": 0}, {"s": 1, "extinction": 1e-30}]}}]})");
+    gConstantSlices = 5;
+    for (const char* scene : {"dense.json", "thin.json"})
+        for (const std::vector<std::string>& sets : std::vector<std::vector<std::string>>{
+                 {"spacing=0.015625", "lmax=0"}, {"spacing=64", "lmax=6"}, {"lmax=6", "table_precision=8bit"}, {"table_res=8"}})
+            for (const char* technique : {"volume.preint", "volume.adaptive3d"}) {
+                std::vector<std::string> all = sets;
+                if (std::string(technique) == "volume.adaptive3d") all.push_back("oracle=test.constant");
+                else std::erase_if(all, [](const std::string& s) { return s.rfind("lmax=", 0) == 0; });  // preint has no lmax
+                const RenderOutcome out = test::render((dir / scene).string(), "7x5", all, technique);
+                EXPECT_EQ(out.counters.count("image.nonfinite"), 0u) << scene << " " << technique;
+                for (int y = 0; y < 5; ++y)
+                    for (int x = 0; x < 7; ++x) {
+                        EXPECT_LE(out.image.at(x, y, 3), 1.0f);
+                        EXPECT_GE(out.image.at(x, y, 3), 0.0f);
+                        EXPECT_LE(out.image.at(x, y, 0), 2.0f * out.image.at(x, y, 3) + 1e-5f);
+                    }
+            }
 }
