@@ -80,14 +80,21 @@ public:
     }
 
 private:
-    // Figure 4 for slice i: levels l_slice down to 0, pixels of a level in parallel.
+    // Figure 4 for slice i: levels l_slice down to 0, tiles of a level in
+    // parallel. Off the full slices a pixel does work only when it is due,
+    // so tiles with nothing due are passed over whole.
     void projectSlice(Pyramid& pyramid, SliceContext& sc, int i) const {
         const int lslice = sliceLevel(i, params_.lmax);
+        const bool fullSlice = lslice == params_.lmax;
         for (int l = lslice; l >= 0; --l) {
-            const int rows = pyramid.level(l).rays.height;
-            tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), [&](const tbb::blocked_range<int>& r) {
+            PyramidLevel& level = pyramid.level(l);
+            tbb::parallel_for(tbb::blocked_range<int>(0, level.tilesY), [&](const tbb::blocked_range<int>& r) {
                 SliceWorker worker(sc);
-                for (int y = r.begin(); y != r.end(); ++y) worker.row(pyramid, l, lslice, i, y);
+                for (int ty = r.begin(); ty != r.end(); ++ty)
+                    for (int tx = 0; tx < level.tilesX; ++tx) {
+                        std::uint8_t& due = level.tileDueLevel[std::size_t(ty) * level.tilesX + tx];
+                        if (fullSlice || due <= lslice) due = worker.tile(pyramid, l, lslice, i, tx, ty);
+                    }
                 worker.flush();
             });
         }

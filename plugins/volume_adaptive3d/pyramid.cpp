@@ -12,6 +12,9 @@ Pyramid::Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& s
         level.rays = makeLevelRays(camera, volume, slices, l, paddedWidth, paddedHeight, imageWidth, imageHeight);
         level.s.assign(level.rays.dir.size(), background);
         level.d.assign(level.rays.dir.size(), 1.0f);
+        level.tilesX = (level.rays.width + kTile - 1) / kTile;
+        level.tilesY = (level.rays.height + kTile - 1) / kTile;
+        level.tileDueLevel.assign(std::size_t(level.tilesX) * level.tilesY, 0);
         levels_.push_back(std::move(level));
     }
     const std::size_t n = levels_[0].rays.dir.size();
@@ -36,17 +39,22 @@ SliceWorker::SliceWorker(SliceContext& sc)
       oracleAccessor_(sc.field.distance ? sc.field.distance->getConstAccessor() : sc.volume.grid->getConstAccessor()),
       outsideDistance_(sc.field.distance ? sc.field.distance->background() : sc.field.constant) {}
 
-void SliceWorker::row(Pyramid& pyramid, int l, int lslice, int slice, int y) {
+std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty) {
     PyramidLevel& level = pyramid.level(l);
     const float sampleBelow = float(2 << l);  // 2^(l+1)
-    for (int x = 0; x < level.rays.width; ++x) {
-        const int idx = level.rays.index(x, y);
-        if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesize(pyramid, l, x, y, idx);
-        const float d = level.d[idx];
-        const bool accumulate = l == 0 && isDue(d, lslice, sc_.lmax);
-        if (l == sc_.lmax || d < sampleBelow) sample(level, idx, slice);
-        if (accumulate) composite(pyramid, idx, slice);
-    }
+    const int x1 = std::min(level.rays.width, (tx + 1) * kTile), y1 = std::min(level.rays.height, (ty + 1) * kTile);
+    std::uint8_t minDue = 255;
+    for (int y = ty * kTile; y < y1; ++y)
+        for (int x = tx * kTile; x < x1; ++x) {
+            const int idx = level.rays.index(x, y);
+            if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesize(pyramid, l, x, y, idx);
+            const float d = level.d[idx];
+            const bool accumulate = l == 0 && isDue(d, lslice, sc_.lmax);
+            if (l == sc_.lmax || d < sampleBelow) sample(level, idx, slice);
+            if (accumulate) composite(pyramid, idx, slice);
+            minDue = std::min(minDue, dueLevel(level.d[idx]));
+        }
+    return minDue;
 }
 
 // Figures 5-7: bilinear interpolation of the coarser level at this pixel's

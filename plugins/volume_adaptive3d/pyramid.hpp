@@ -26,10 +26,18 @@ inline int sliceLevel(int slice, int lmax) {
 // slice of level lslice: the skipping rule d >= 2^(lslice+1) negated.
 inline bool isDue(float d, int lslice, int lmax) { return lslice == lmax || d < float(2 << lslice); }
 
+// A pixel is due on slices of level >= floor(log2 d); 8x8 tiles keep the
+// smallest such level of their pixels so that a slice can pass over tiles
+// with nothing due without visiting their pixels (early rejection).
+constexpr int kTile = 8;
+inline std::uint8_t dueLevel(float d) { return std::uint8_t(std::bit_width(unsigned(d)) - 1); }
+
 struct PyramidLevel {
     LevelRays rays;
     std::vector<float> s;  // normalised data value
     std::vector<float> d;  // sampling distance, slices
+    int tilesX = 0, tilesY = 0;
+    std::vector<std::uint8_t> tileDueLevel;  // min dueLevel(d) over the tile
 };
 
 class Pyramid {
@@ -60,7 +68,8 @@ struct SliceContext {
 class SliceWorker {
 public:
     explicit SliceWorker(SliceContext& sc);
-    void row(Pyramid& pyramid, int l, int lslice, int slice, int y);
+    // Figure 4's body for the pixels of one tile; returns the tile's new due level.
+    std::uint8_t tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty);
     void flush();  // adds this worker's counts to the counters
 
 private:
