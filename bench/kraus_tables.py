@@ -22,10 +22,13 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WEFT = os.path.join(ROOT, "build", "bin", "weft")
 
+# (label, file tag, technique, --set values)
 COLUMNS = [
-    ("tex.-based", "volume.preint", []),
-    ("adaptive min.", "volume.adaptive3d", ["oracle=minimum"]),
-    ("adaptive |grad a|>eps", "volume.adaptive3d", ["oracle=gradient_alpha"]),
+    ("tex.-based", "preint", "volume.preint", []),
+    ("adaptive min.", "minimum", "volume.adaptive3d", ["oracle=minimum"]),
+    ("adaptive |grad a|>eps", "gradient_alpha", "volume.adaptive3d", ["oracle=gradient_alpha"]),
+    ("adaptive vdb_topology", "vdb_topology", "volume.adaptive3d", ["oracle=vdb_topology"]),
+    ("adaptive majorant", "majorant", "volume.adaptive3d", ["oracle=majorant"]),
 ]
 ROWS = ["volume.samples", "oracle.samples", "synthesis.ops", "composite.ops", "slices"]
 
@@ -69,12 +72,12 @@ def rmse(a, b):
 
 def table(title, scene, tag, out, res, threads):
     results = []
-    for label, technique, sets in COLUMNS:
-        exr, stats = render(scene, tag + "_" + label.split()[0].strip(".").replace("|", ""), technique, sets, out, res, threads)
+    for label, name, technique, sets in COLUMNS:
+        exr, stats = render(scene, tag + "_" + name, technique, sets, out, res, threads)
         results.append((label, exr, stats))
     ref = results[0][1]
     print("\n%s (%s, %d threads)" % (title, res, threads))
-    print("%-22s" % "" + "".join("%24s" % r[0] for r in results))
+    print("%-22s" % "" + "".join("%23s " % r[0] for r in results))
     for row in ROWS:
         print("%-22s" % row + "".join("%24s" % "{:,}".format(r[2]["counters"].get(row, 0)) for r in results))
     print("%-22s" % "render time (s)" + "".join("%24.3f" % (r[2]["timings_ms"]["render"] / 1000) for r in results))
@@ -82,7 +85,7 @@ def table(title, scene, tag, out, res, threads):
     print("%-22s" % "  of it oracle (s)" + "".join("%24.3f" % o for o in oracle))
     print("%-22s" % "RMSE vs tex.-based" + "".join("%24.6f" % rmse(r[1], ref) for r in results))
     base = results[0][2]
-    last = results[-1][2]
+    last = results[2][2]
     print("gradient_alpha: %.1fx fewer volume samples, %.2fx the speed of tex.-based" % (
         base["counters"]["volume.samples"] / max(1, last["counters"]["volume.samples"]),
         base["timings_ms"]["render"] / last["timings_ms"]["render"]))

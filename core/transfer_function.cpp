@@ -60,6 +60,14 @@ TfSample TransferFunction::lookup(float value) const {
             a.extinction + t * (b.extinction - a.extinction)};
 }
 
+std::array<double, 2> TransferFunction::extinctionBounds(double lo, double hi) const {
+    const double s0 = normalize(std::min(lo, hi)), s1 = normalize(std::max(lo, hi));
+    double emin = std::min(atS(s0).extinction, atS(s1).extinction), emax = std::max(atS(s0).extinction, atS(s1).extinction);
+    for (const TfPoint& p : points_)
+        if (p.s > s0 && p.s < s1) emin = std::min(emin, p.extinction), emax = std::max(emax, p.extinction);
+    return {emin, emax};
+}
+
 TransferFunction TransferFunction::defaultFor(double minValue, double maxValue) {
     const double lo = std::min(0.0, minValue);
     const double hi = maxValue > lo ? maxValue : lo + 1.0;

@@ -36,6 +36,9 @@ public:
     TfPoint atS(double s) const;
     // Fast lookup through a 4096-entry table, for inner loops.
     TfSample lookup(float value) const;
+    // Smallest and largest extinction over the data values [lo, hi]: exact,
+    // since extinction is piecewise linear in s (ends and control points).
+    std::array<double, 2> extinctionBounds(double lo, double hi) const;
 
     // The default for a bare grid: a smoke-like ramp over [0, maxValue].
     static TransferFunction defaultFor(double minValue, double maxValue);

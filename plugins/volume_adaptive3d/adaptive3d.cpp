@@ -109,7 +109,7 @@ std::vector<ParamSpec> adaptiveParamSpecs() {
     specs.push_back(stringParam("oracle", "gradient_alpha", "sampling-distance oracle (oracles: weft help volume.adaptive3d)",
                                 [](const std::string& name) { oracles().get(name); }));
     specs.push_back(intParam("lmax", 3, 0, 6, "levels of skipping: distances up to 2^lmax slices (the paper uses 3)"));
-    specs.push_back(floatParam("epsilon", 0.01, 0, 1, "oracle feature threshold (gradient_alpha: |grad alpha| per voxel)"));
+    specs.push_back(floatParam("epsilon", 0.01, 0, 1, "oracle feature threshold: gradient_alpha |grad opacity| per voxel, majorant opacity change in a brick"));
     return specs;
 }
 

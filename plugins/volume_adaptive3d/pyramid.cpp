@@ -36,8 +36,7 @@ Image Pyramid::image(int width, int height) const {
 
 SliceWorker::SliceWorker(SliceContext& sc)
     : sc_(sc), data_(sc.volume),
-      oracleAccessor_(sc.field.distance ? sc.field.distance->getConstAccessor() : sc.volume.grid->getConstAccessor()),
-      outsideDistance_(sc.field.distance ? sc.field.distance->background() : sc.field.constant) {}
+      oracleAccessor_(sc.field.distance ? sc.field.distance->getConstAccessor() : sc.volume.grid->getConstAccessor()) {}
 
 std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty) {
     PyramidLevel& level = pyramid.level(l);
@@ -50,7 +49,7 @@ std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, i
             if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesize(pyramid, l, x, y, idx);
             const float d = level.d[idx];
             const bool accumulate = l == 0 && isDue(d, lslice, sc_.lmax);
-            if (l == sc_.lmax || d < sampleBelow) sample(level, idx, slice);
+            if (l == sc_.lmax || d < sampleBelow) sample(level, l, idx, slice);
             if (accumulate) composite(pyramid, idx, slice);
             minDue = std::min(minDue, dueLevel(level.d[idx]));
         }
@@ -77,26 +76,36 @@ void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx) {
     ++syntheses_;
 }
 
-void SliceWorker::sample(PyramidLevel& level, int idx, int slice) {
+// The oracle is asked on every sample, inside the volume's box or not: a
+// coarse ray may still be outside while the finer rays that inherit its
+// distance are already inside.
+void SliceWorker::sample(PyramidLevel& level, int l, int idx, int slice) {
     const LevelRays& rays = level.rays;
+    const openvdb::Vec3d p = sc_.slices.eye + rays.dir[idx] * sc_.slices.t(slice);
     const bool inside = slice >= rays.first[idx] && slice <= rays.last[idx];
-    float dVoxels = outsideDistance_;
+    float dVoxels = sc_.field.at(oracleAccessor_, p);
+    oracleSamples_ += inside || sc_.field.distance;  // a constant oracle costs nothing outside
     if (inside) {
-        const openvdb::Vec3d p = sc_.slices.eye + rays.dir[idx] * sc_.slices.t(slice);
         level.s[idx] = data_.sample(p);
-        dVoxels = sc_.field.at(oracleAccessor_, p);
-        ++samples_, ++oracleSamples_;
+        ++samples_, ++samplesPerLevel_[l];
     } else {
         level.s[idx] = data_.background();
+        // Before the volume, skip no further than the slice just in front of
+        // it, whose background sample starts the first segment inside.
+        if (slice < rays.first[idx])
+            dVoxels = std::min(dVoxels, float(std::max(1, rays.first[idx] - 1 - slice) * sc_.slices.spacing));
     }
     const float maxSlices = float(1 << sc_.lmax);
     level.d[idx] = std::clamp(float(dVoxels / sc_.slices.spacing), 1.0f, maxSlices);
 }
 
-// Figure 8: the segment from the previous composite to this slice.
+// Figure 8: the segment from the previous composite to this slice. A
+// segment with background at both ends adds nothing (the transfer function
+// is transparent there), so it costs no table lookup.
 void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
     const float s0 = pyramid.level(0).s[idx];
-    if (slice > 0) {
+    const float empty = data_.background();
+    if (slice > 0 && !(s0 == empty && pyramid.sPrev[idx] == empty)) {
         const int length = slice - pyramid.iPrev[idx];
         pyramid.color[idx].add(sc_.tables.forSlices(length).lookup(0, pyramid.sPrev[idx], s0));
         ++composites_;
@@ -107,6 +116,7 @@ void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
 
 void SliceWorker::flush() {
     sc_.counters.add("volume.samples", samples_);
+    for (int l = 0; l <= sc_.lmax; ++l) sc_.counters.add("volume.samples.level" + std::to_string(l), samplesPerLevel_[l]);
     sc_.counters.add("oracle.samples", oracleSamples_);
     sc_.counters.add("synthesis.ops", syntheses_);
     sc_.counters.add("composite.ops", composites_);

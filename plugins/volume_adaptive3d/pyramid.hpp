@@ -74,14 +74,14 @@ public:
 
 private:
     void synthesize(Pyramid& pyramid, int l, int x, int y, int idx);
-    void sample(PyramidLevel& level, int idx, int slice);
+    void sample(PyramidLevel& level, int l, int idx, int slice);
     void composite(Pyramid& pyramid, int idx, int slice);
 
     SliceContext& sc_;
     ScalarSampler data_;
     openvdb::FloatGrid::ConstAccessor oracleAccessor_;
-    float outsideDistance_;
     std::int64_t samples_ = 0, oracleSamples_ = 0, syntheses_ = 0, composites_ = 0;
+    std::int64_t samplesPerLevel_[8] = {};  // where the samples go: volume.samples.level<l>
 };
 
 }  // namespace weft

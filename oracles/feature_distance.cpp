@@ -1,0 +1,84 @@
+#include "oracles/feature_distance.hpp"
+
+#include <openvdb/tools/Morphology.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace weft {
+
+double sliceOpacity(const Volume& volume, double spacing, float value) {
+    return -std::expm1(-double(volume.tf.lookup(value).extinction) * spacing);
+}
+
+namespace {
+
+// Distance stored for voxels at Chebyshev distance k from a feature: k
+// itself, the paper's "distance to the nearest feature voxel" (Chebyshev
+// never exceeds Euclidean, so it errs on the dense side).
+float ringDistance(int k, const OracleContext& ctx, float cap) {
+    return std::clamp(float(k), float(ctx.sliceSpacing), cap);
+}
+
+}  // namespace
+
+OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx) {
+    using namespace openvdb;
+    const float minimum = float(ctx.sliceSpacing);
+    const float cap = std::max(minimum, float(ctx.sliceSpacing * double(1 << ctx.lmax)));
+    FloatGrid::Ptr distance = FloatGrid::create(cap);
+    distance->setTransform(features.transform().copy());
+    distance->setTree(std::make_shared<FloatTree>(features.tree(), cap, minimum, TopologyCopy()));
+    // Grow the reached region one voxel (26-neighbourhood) at a time; each new
+    // ring is merged in with its distance, until the cap is reached.
+    MaskTree reached(features.tree());
+    for (int k = 1; ringDistance(k - 1, ctx, cap) < cap; ++k) {
+        MaskTree previous(reached);
+        tools::dilateActiveValues(reached, 1, tools::NN_FACE_EDGE_VERTEX, tools::PRESERVE_TILES);
+        MaskTree ring(reached);
+        ring.topologyDifference(previous);
+        FloatTree ringValues(ring, cap, ringDistance(k, ctx, cap), TopologyCopy());
+        distance->tree().merge(ringValues, MERGE_ACTIVE_STATES);
+    }
+    OracleField field;
+    field.constant = cap;
+    field.distance = distance;
+    return field;
+}
+
+std::vector<BrickRange> brickRanges(const openvdb::FloatGrid& grid) {
+    using namespace openvdb;
+    std::vector<const FloatTree::LeafNodeType*> leaves;
+    grid.tree().getNodes(leaves);
+    std::vector<BrickRange> ranges(leaves.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        FloatGrid::ConstAccessor acc = grid.getConstAccessor();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            CoordBBox box = leaves[i]->getNodeBoundingBox();
+            box.expand(1);
+            float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+            for (auto c = box.begin(); c; ++c) {
+                const float v = acc.getValue(*c);
+                lo = std::min(lo, v), hi = std::max(hi, v);
+            }
+            ranges[i] = {leaves[i]->getNodeBoundingBox(), lo, hi};
+        }
+    });
+    for (auto it = grid.tree().cbeginValueOn(); it; ++it)
+        if (!it.isVoxelValue()) ranges.push_back({it.getBoundingBox(), *it, *it});
+    return ranges;
+}
+
+openvdb::MaskGrid::Ptr maskOfBricks(const std::vector<BrickRange>& bricks, const std::vector<bool>& isFeature,
+                                    const openvdb::math::Transform& transform) {
+    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(false);
+    mask->setTransform(transform.copy());
+    for (std::size_t i = 0; i < bricks.size(); ++i)
+        if (isFeature[i]) mask->tree().fill(bricks[i].box, true, true);
+    mask->tree().voxelizeActiveTiles();
+    return mask;
+}
+
+}  // namespace weft

@@ -1,0 +1,37 @@
+#pragma once
+// What the precomputed oracles share. Each marks "feature" voxels where
+// samples must stay dense; distanceToFeatures() turns that mask into a
+// sampling-distance field. Skipping from a point is safe while the segment
+// stays clear of every feature, so the distance is the Chebyshev distance to
+// the nearest feature voxel, which never exceeds the Euclidean one.
+#include <openvdb/openvdb.h>
+
+#include <vector>
+
+#include "oracles/oracle.hpp"
+
+namespace weft {
+
+// Opacity of one slice-spacing segment at a raw data value.
+double sliceOpacity(const Volume& volume, double spacing, float value);
+
+// The sampling-distance field of a feature mask, in voxels: ctx.sliceSpacing
+// on and next to features, growing by one voxel per voxel of Chebyshev
+// distance, capped (and constant outside the stored band) at
+// 2^lmax * sliceSpacing.
+OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx);
+
+// The value range of one region of the grid: an 8^3 leaf brick with a
+// one-voxel apron (so a step between neighbouring bricks shows in both), or
+// an active tile (constant).
+struct BrickRange {
+    openvdb::CoordBBox box;
+    float min, max;
+};
+std::vector<BrickRange> brickRanges(const openvdb::FloatGrid& grid);
+
+// Marks whole bricks as features.
+openvdb::MaskGrid::Ptr maskOfBricks(const std::vector<BrickRange>& bricks, const std::vector<bool>& isFeature,
+                                    const openvdb::math::Transform& transform);
+
+}  // namespace weft

@@ -1,0 +1,71 @@
+// gradient_alpha: the paper's ad-hoc oracle (Kraus et al. 2007, Section 4):
+// the distance to the nearest voxel whose opacity-gradient magnitude exceeds
+// epsilon. Opacity is that of one slice-spacing segment through the transfer
+// function, so the oracle is built once per volume, transfer function and
+// spacing. Gradients are central differences over voxels next to any active
+// voxel (the background beyond counts, so edges of the data are features).
+#include <openvdb/tools/Morphology.h>
+#include <openvdb/tools/Prune.h>
+#include <openvdb/tree/LeafManager.h>
+
+#include <cmath>
+
+#include "oracles/feature_distance.hpp"
+
+namespace weft {
+
+namespace {
+
+// Voxels that may hold a gradient: the active ones and their face neighbours.
+openvdb::MaskGrid::Ptr candidateVoxels(const openvdb::FloatGrid& grid) {
+    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(false);
+    mask->setTransform(grid.transform().copy());
+    mask->tree().topologyUnion(grid.tree());
+    mask->tree().voxelizeActiveTiles();
+    openvdb::tools::dilateActiveValues(mask->tree(), 1, openvdb::tools::NN_FACE, openvdb::tools::EXPAND_TILES);
+    return mask;
+}
+
+class GradientTest {
+public:
+    GradientTest(const OracleContext& ctx)
+        : ctx_(ctx), acc_(ctx.volume.grid->getConstAccessor()), threshold2_(ctx.epsilon * ctx.epsilon) {}
+    bool isFeature(const openvdb::Coord& c) {
+        double g2 = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            openvdb::Coord lo = c, hi = c;
+            --lo[axis], ++hi[axis];
+            const double g = 0.5 * (alpha(hi) - alpha(lo));
+            g2 += g * g;
+        }
+        return g2 > threshold2_;
+    }
+
+private:
+    double alpha(const openvdb::Coord& c) { return sliceOpacity(ctx_.volume, ctx_.sliceSpacing, acc_.getValue(c)); }
+    const OracleContext& ctx_;
+    openvdb::FloatGrid::ConstAccessor acc_;
+    double threshold2_;
+};
+
+openvdb::MaskGrid::Ptr gradientFeatures(const OracleContext& ctx) {
+    openvdb::MaskGrid::Ptr mask = candidateVoxels(*ctx.volume.grid);
+    openvdb::tree::LeafManager<openvdb::MaskTree> leaves(mask->tree());
+    leaves.foreach([&](openvdb::MaskTree::LeafNodeType& leaf, std::size_t) {
+        GradientTest test(ctx);
+        for (auto it = leaf.beginValueOn(); it; ++it)
+            if (!test.isFeature(it.getCoord())) leaf.setValueOff(it.pos());
+    });
+    openvdb::tools::pruneInactive(mask->tree());
+    return mask;
+}
+
+const OracleRegistrar registrar{{
+    "gradient_alpha",
+    "distance to the nearest voxel with |grad opacity| > epsilon (the paper's oracle)",
+    [](const OracleContext& ctx) { return distanceToFeatures(*gradientFeatures(ctx), ctx); },
+}};
+
+}  // namespace
+
+}  // namespace weft

@@ -1,0 +1,167 @@
+// The precomputed oracles: the distance transform of a feature mask, what
+// each oracle marks as a feature on volumes with known structure, and that
+// adaptive renders driven by them stay close to volume.preint.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/rng.hpp"
+#include "oracles/feature_distance.hpp"
+#include "tests/support/render_helpers.hpp"
+
+using namespace weft;
+using openvdb::Coord;
+
+namespace {
+
+// A fog volume: density 1 in [lo, hi]^3 voxels, 0 elsewhere; extinction
+// 0 at density 0 rising to `peak` at density 1.
+Volume boxVolume(int lo, int hi, double peak = 0.5) {
+    initVdb();
+    openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+    grid->tree().fill(openvdb::CoordBBox(Coord(lo), Coord(hi)), 1.0f, true);
+    grid->tree().voxelizeActiveTiles();
+    Volume v;
+    v.grid = grid;
+    v.tf = TransferFunction(0, 1, {{0, {1, 1, 1}, 0}, {1, {1, 1, 1}, peak}});
+    computeStatistics(v);
+    return v;
+}
+
+float distanceAt(const OracleField& f, const Coord& c) {
+    return f.distance ? f.distance->tree().getValue(c) : f.constant;
+}
+
+int chebyshev(const Coord& a, const Coord& b) {
+    return std::max({std::abs(a.x() - b.x()), std::abs(a.y() - b.y()), std::abs(a.z() - b.z())});
+}
+
+}  // namespace
+
+TEST(FeatureDistance, RingsGrowByOneVoxelUpToTheCap) {
+    const Volume v = boxVolume(0, 1);
+    openvdb::MaskGrid features(false);
+    features.tree().setValueOn(Coord(0));
+    const OracleField f = distanceToFeatures(features, {v, 1.0, 3, 0.01});
+    for (int k = 0; k <= 12; ++k) {
+        EXPECT_FLOAT_EQ(distanceAt(f, Coord(k, 0, 0)), float(std::clamp(k, 1, 8))) << k;
+        EXPECT_FLOAT_EQ(distanceAt(f, Coord(-k, k, -k)), float(std::clamp(k, 1, 8))) << k;
+    }
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(1000, 0, 0)), 8.0f);
+}
+
+TEST(FeatureDistance, RespectsSpacingAndLmax) {
+    const Volume v = boxVolume(0, 1);
+    openvdb::MaskGrid features(false);
+    features.tree().setValueOn(Coord(0));
+    const OracleField f = distanceToFeatures(features, {v, 0.5, 2, 0.01});  // cap 2 voxels
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(0)), 0.5f);
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(1, 0, 0)), 1.0f);
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(5, 3, 0)), 2.0f);
+}
+
+TEST(FeatureDistance, NeverExceedsTheEuclideanDistanceToAFeature) {
+    const Volume v = boxVolume(0, 1);
+    Rng rng(7);
+    openvdb::MaskGrid features(false);
+    std::vector<Coord> points;
+    for (int i = 0; i < 12; ++i) {
+        points.emplace_back(int(rng.next() % 40), int(rng.next() % 40), int(rng.next() % 40));
+        features.tree().setValueOn(points.back());
+    }
+    const OracleField f = distanceToFeatures(features, {v, 1.0, 4, 0.01});
+    for (int trial = 0; trial < 3000; ++trial) {
+        const Coord c(int(rng.next() % 60) - 10, int(rng.next() % 60) - 10, int(rng.next() % 60) - 10);
+        double euclid = 1e9;
+        int cheb = 1 << 20;
+        for (const Coord& p : points) {
+            euclid = std::min(euclid, (c - p).asVec3d().length());
+            cheb = std::min(cheb, chebyshev(c, p));
+        }
+        const float d = distanceAt(f, c);
+        EXPECT_LE(d, std::max(1.0, euclid) + 1e-6) << c;
+        EXPECT_FLOAT_EQ(d, float(std::clamp(cheb, 1, 16))) << c;
+    }
+}
+
+TEST(TransferFunctionBounds, ExactOverPiecewiseLinearExtinction) {
+    const TransferFunction tf(0, 10, {{0, {1, 1, 1}, 0}, {0.5, {1, 1, 1}, 2}, {1, {1, 1, 1}, 1}});
+    auto b = tf.extinctionBounds(0, 10);
+    EXPECT_DOUBLE_EQ(b[0], 0);
+    EXPECT_DOUBLE_EQ(b[1], 2);
+    b = tf.extinctionBounds(7.5, 10);  // s 0.75..1: 1.5 down to 1
+    EXPECT_DOUBLE_EQ(b[0], 1);
+    EXPECT_DOUBLE_EQ(b[1], 1.5);
+    b = tf.extinctionBounds(2.5, 2.5);
+    EXPECT_DOUBLE_EQ(b[0], 1);
+    EXPECT_DOUBLE_EQ(b[1], 1);
+    b = tf.extinctionBounds(-5, std::nan(""));  // NaN reads as empty, below range clamps
+    EXPECT_DOUBLE_EQ(b[0], 0);
+    EXPECT_DOUBLE_EQ(b[1], 0);
+}
+
+TEST(GradientAlphaOracle, FeaturesSitOnTheFacesOfAConstantBlock) {
+    const Volume v = boxVolume(0, 47);
+    const OracleField f = oracles().get("gradient_alpha").build({v, 1.0, 3, 0.01});
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(0, 20, 20)), 1.0f);    // face: opacity jumps
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(-1, 20, 20)), 1.0f);   // just outside the face
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(1, 20, 20)), 1.0f);    // central differences flag x = -1 and 0 only
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(5, 20, 20)), 5.0f);    // inside, 5 voxels from the face
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(24, 24, 24)), 8.0f);   // centre: constant, capped
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(-30, 20, 20)), 8.0f);  // far outside
+}
+
+TEST(GradientAlphaOracle, EpsilonAboveTheJumpLeavesNoFeatures) {
+    // Slice opacity at density 1: 1 - e^-0.5 = 0.39; |gradient| 0.2 on faces,
+    // 0.28 on edges, 0.34 at corners.
+    const Volume v = boxVolume(0, 15, 0.5);
+    const OracleField low = oracles().get("gradient_alpha").build({v, 1.0, 3, 0.1});
+    const OracleField high = oracles().get("gradient_alpha").build({v, 1.0, 3, 0.35});
+    EXPECT_FLOAT_EQ(distanceAt(low, Coord(0, 8, 8)), 1.0f);
+    EXPECT_FLOAT_EQ(distanceAt(high, Coord(0, 8, 8)), 8.0f);
+}
+
+TEST(VdbTopologyOracle, EmptySpaceIsFarOccupiedBricksAreDense) {
+    const Volume v = boxVolume(0, 15);
+    const OracleField f = oracles().get("vdb_topology").build({v, 1.0, 3, 0.01});
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(8, 8, 8)), 1.0f);     // inside: occupied brick
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(-2, 8, 8)), 2.0f);    // no brick out there: 2 from the occupied ones
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(-40, 8, 8)), 8.0f);
+}
+
+TEST(VdbTopologyOracle, TransparentValuesAreEmptyEverywhere) {
+    Volume v = boxVolume(0, 15);
+    v.tf = TransferFunction(0, 1, {{0, {1, 1, 1}, 0}, {1, {1, 1, 1}, 0}});
+    const OracleField f = oracles().get("vdb_topology").build({v, 1.0, 3, 0.01});
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(8, 8, 8)), 8.0f);
+}
+
+TEST(MajorantOracle, SmoothBricksAreSkippedEvenWhenNotEmpty) {
+    const Volume v = boxVolume(0, 47);
+    const OracleField f = oracles().get("majorant").build({v, 1.0, 3, 0.01});
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(0, 20, 20)), 1.0f);    // boundary brick: opacity jumps across its apron
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(12, 20, 20)), 5.0f);   // interior brick, 5 from the boundary bricks (x <= 7)
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(24, 24, 24)), 8.0f);   // 17 from any boundary brick: capped
+}
+
+TEST(Oracles, AdaptiveRendersStayWithinOne255thOfPreint) {
+    const std::string smoke = std::string(WEFT_SOURCE_DIR) + "/data/smoke_small.vdb";
+    const RenderOutcome ref = test::render(smoke, "64x64", {}, "volume.preint");
+    for (const char* oracle : {"gradient_alpha", "vdb_topology", "majorant"}) {
+        const RenderOutcome a = test::render(smoke, "64x64", {std::string("oracle=") + oracle}, "volume.adaptive3d");
+        EXPECT_LT(test::rmse(a.image, ref.image), 1.0 / 255) << oracle;
+        EXPECT_LT(a.counters.at("volume.samples"), ref.counters.at("volume.samples")) << oracle;
+    }
+}
+
+TEST(Oracles, BuiltFieldsAndImagesIdenticalOnOneAndTwoThreads) {
+    const std::string smoke = std::string(WEFT_SOURCE_DIR) + "/data/smoke_small.vdb";
+    for (const char* oracle : {"gradient_alpha", "vdb_topology", "majorant"}) {
+        const std::vector<std::string> sets{std::string("oracle=") + oracle};
+        const RenderOutcome a = test::render(smoke, "48x40", sets, "volume.adaptive3d", 1);
+        const RenderOutcome b = test::render(smoke, "48x40", sets, "volume.adaptive3d", 2);
+        EXPECT_EQ(a.image.data(), b.image.data()) << oracle;
+        EXPECT_EQ(a.counters, b.counters) << oracle;
+    }
+}
