@@ -3,7 +3,9 @@
 #include <openvdb/io/File.h>
 #include <openvdb/tools/Count.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <mutex>
 
 #include "core/error.hpp"
@@ -67,6 +69,13 @@ void computeStatistics(Volume& volume) {
     const auto range = openvdb::tools::minMax(volume.grid->tree());
     volume.valueMin = range.min();
     volume.valueMax = range.max();
+    if (std::isfinite(volume.valueMin) && std::isfinite(volume.valueMax)) return;
+    // NaN or Inf voxels (a broken simulation) must not make the range useless.
+    float lo = std::numeric_limits<float>::max(), hi = -lo;
+    for (auto it = volume.grid->cbeginValueOn(); it; ++it)
+        if (std::isfinite(*it)) lo = std::min(lo, *it), hi = std::max(hi, *it);
+    volume.valueMin = lo <= hi ? lo : 0.0f;
+    volume.valueMax = lo <= hi ? hi : 0.0f;
 }
 
 }  // namespace weft
