@@ -58,7 +58,7 @@ void expectFiniteAndBounded(const Image& img, const std::string& what) {
 TEST(SingleScatter, RaymarchReproducesVdbRender) {
     if (!haveVdbRender()) GTEST_SKIP() << "vdb_render is not installed (scripts/install-deps.sh installs it)";
     test::TempDir dir;
-    for (const char* extra : {"", "gain=0", "shadowstep=0.7"}) {
+    for (const char* extra : {"", "gain=0", "shadowstep=0.7", "rotate=-8,12,5", "fov=30", "lookat=2,25,0"}) {
         std::vector<std::string> sets{"compat=vdb_render", "translate=0,20,80", "estimator=raymarch"};
         std::string args = "-translate 0,20,80 -res 64x48";
         if (*extra) {
