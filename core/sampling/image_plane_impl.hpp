@@ -1,0 +1,123 @@
+#pragma once
+// Template bodies of ImagePlane (included by image_plane.hpp only).
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace weft {
+
+template <class Shader>
+Rgba ImagePlane::boxPixel(Shader& shade, int px, int py, int& used) const {
+    const int spp = settings_.spp;
+    Rgba sum;
+    std::vector<Rgba> values;
+    const bool stochastic = opt_.adaptive == AdaptiveMode::Stochastic;
+    for (int k = 0; k < spp; ++k) {
+        const Rgba v = shade(sample(px, py, k));
+        sum += v;
+        if (stochastic) values.push_back(v);
+    }
+    used = spp;
+    if (stochastic && refineStochastic(values)) {
+        for (int k = spp; k < spp + opt_.extraSpp; ++k) sum += shade(sample(px, py, k));
+        used += opt_.extraSpp;
+    }
+    const float n = float(used);
+    return {sum.r / n, sum.g / n, sum.b / n, sum.a / n};
+}
+
+// Wolberg 6.2.2: a square is the mean of its corners unless one corner
+// differs from that mean by more than the threshold; then it is the mean of
+// its four quarters. Points on the lattice of the finest level are shaded
+// once and shared between neighbouring squares.
+template <class Shader>
+Rgba ImagePlane::adaptivePixel(Shader& shade, const std::vector<Rgba>& corners, int px, int py, int& used) const {
+    const int L = 1 << opt_.depth;
+    const int W1 = settings_.width + 1;
+    std::vector<std::pair<int, Rgba>> cache;
+    used = 4;
+    auto value = [&](int i, int j) -> Rgba {
+        if ((i == 0 || i == L) && (j == 0 || j == L)) return corners[std::size_t(py + j / L) * W1 + px + i / L];
+        const int key = j * (L + 1) + i;
+        for (const auto& [k, v] : cache)
+            if (k == key) return v;
+        CameraSample s;
+        s.x = px + double(i) / L, s.y = py + double(j) / L, s.px = px, s.py = py, s.index = std::uint32_t(used++);
+        const Rgba v = shade(s);
+        cache.emplace_back(key, v);
+        return v;
+    };
+    auto differs = [&](const Rgba& c, const Rgba& m) {
+        const float t = float(opt_.threshold);
+        return std::abs(c.r - m.r) > t || std::abs(c.g - m.g) > t || std::abs(c.b - m.b) > t || std::abs(c.a - m.a) > t;
+    };
+    auto quad = [&](auto& self, int i, int j, int size) -> Rgba {
+        const Rgba c[4] = {value(i, j), value(i + size, j), value(i, j + size), value(i + size, j + size)};
+        Rgba mean;
+        for (const Rgba& v : c) mean += v * 0.25f;
+        if (size == 1 || !(differs(c[0], mean) || differs(c[1], mean) || differs(c[2], mean) || differs(c[3], mean)))
+            return mean;
+        const int h = size / 2;
+        Rgba out;
+        out += self(self, i, j, h) * 0.25f, out += self(self, i + h, j, h) * 0.25f;
+        out += self(self, i, j + h, h) * 0.25f, out += self(self, i + h, j + h, h) * 0.25f;
+        return out;
+    };
+    return quad(quad, 0, 0, L);
+}
+
+template <class MakeShader>
+std::vector<Rgba> ImagePlane::cornerGrid(RenderContext& ctx, MakeShader& make) const {
+    const int W1 = settings_.width + 1, H1 = settings_.height + 1;
+    std::vector<Rgba> corners(std::size_t(W1) * H1);
+    tbb::parallel_for(0, H1, [&](int y) {
+        auto shade = make();
+        for (int x = 0; x < W1; ++x) {
+            CameraSample s;
+            s.x = x, s.y = y, s.px = x, s.py = y, s.index = 1u << 30;
+            corners[std::size_t(y) * W1 + x] = shade(s);
+        }
+        shade.flush(ctx.counters);
+        ctx.counters.add("image.samples", W1);
+    });
+    return corners;
+}
+
+template <class MakeShader>
+Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeShader) const {
+    const RenderSettings& s = settings_;
+    const bool adaptive = opt_.adaptive != AdaptiveMode::Off;
+    const bool wide = !adaptive && !(filter_.kind() == FilterKind::Box && filter_.radius() == 0.5);
+    Image image = Image::rgba(s.width, s.height);
+    const int countChannel = adaptive ? image.addChannel("sampleCount") : -1;
+    std::vector<Rgba> corners;
+    if (opt_.adaptive == AdaptiveMode::Supersample) corners = cornerGrid(ctx, makeShader);
+    std::vector<std::vector<float>> rows(wide ? s.height : 0);
+    forEachRow(s, label, [&](int y) {
+        auto shade = makeShader();
+        std::int64_t evaluations = 0;
+        for (int x = 0; x < s.width; ++x) {
+            if (wide) {
+                for (int k = 0; k < s.spp; ++k) {
+                    const CameraSample cs = sample(x, y, k);
+                    const Rgba v = shade(cs);
+                    rows[y].insert(rows[y].end(), {float(cs.x), float(cs.y), v.r, v.g, v.b, v.a});
+                }
+                evaluations += s.spp;
+                continue;
+            }
+            int used = 0;
+            const Rgba v = opt_.adaptive == AdaptiveMode::Supersample ? adaptivePixel(shade, corners, x, y, used)
+                                                                       : boxPixel(shade, x, y, used);
+            float* px = image.pixel(x, y);
+            px[0] = v.r, px[1] = v.g, px[2] = v.b, px[3] = v.a;
+            if (countChannel >= 0) px[countChannel] = float(used);
+            evaluations += opt_.adaptive == AdaptiveMode::Supersample ? used - 4 : used;
+        }
+        shade.flush(ctx.counters);
+        ctx.counters.add("image.samples", evaluations);
+    });
+    return wide ? gather(rows) : image;
+}
+
+}  // namespace weft
