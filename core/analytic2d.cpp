@@ -116,9 +116,10 @@ AnalyticImage::AnalyticImage(AnalyticScene scene, int width, int height)
     farY_ = horizon_ + focal_ / (200 * square_);
     lineAngle_ = 6 * std::numbers::pi / 180;
     const double nx = -std::sin(lineAngle_), ny = std::cos(lineAngle_);
-    for (int i = 0; i < 12; ++i) {
-        lineOffset_.push_back(nx * cx_ + ny * (i + 0.5) * height / 12.0);
-        lineWidth_.push_back(0.1 + 1.4 * i / 11.0);
+    const int lines = std::clamp(height / 4, 1, 12);  // at least 4 pixels apart: strips never overlap
+    for (int i = 0; i < lines; ++i) {
+        lineOffset_.push_back(nx * cx_ + ny * (i + 0.5) * height / lines);
+        lineWidth_.push_back(lines > 1 ? 0.1 + 1.4 * i / (lines - 1) : 0.8);
     }
     discR_ = height / 6.0, discX0_ = 0.25 * width, discX1_ = 0.75 * width;
 }

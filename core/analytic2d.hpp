@@ -10,7 +10,8 @@
 //   checker    a checkerboard plane in perspective up to a far edge, sky 0.5
 //              beyond; exact by clipping projected squares to the pixel
 //   siemens    Siemens star of 36 wedges about the centre; exact by clipping
-//   lines      12 thin lines at 6 degrees, 0.1 to 1.5 pixels wide; exact
+//   lines      12 thin lines at 6 degrees (fewer below 48 rows), 0.1 to 1.5
+//              pixels wide; exact
 //   disc       a disc moving right during the shutter (t in [0, 1)); its
 //              time-averaged coverage of a point is closed form, its pixel
 //              integral exact in x and adaptive Simpson in y (to 1e-10)
