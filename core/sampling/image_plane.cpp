@@ -54,24 +54,11 @@ ImagePlane::ImagePlane(const ImagePlaneOptions& options, const RenderSettings& s
                     " spp is more than 2^27 samples; use filter=box or fewer samples");
 }
 
-const PatternPoint* ImagePlane::point(const std::optional<PatternSet>& set, int px, int py, int k) const {
-    return set ? &set->sample(px, py, k) : nullptr;
-}
-
-CameraSample ImagePlane::sample(int px, int py, int k) const {
-    CameraSample s;
-    s.px = px, s.py = py, s.index = std::uint32_t(k);
-    const bool first = k < settings_.spp;
-    if (const PatternPoint* p = point(first ? patterns_ : extra_, px, py, first ? k : k - settings_.spp)) {
-        s.x = px + double(p->x), s.y = py + double(p->y), s.time = p->t;
-    } else if (settings_.spp == 1 && k == 0) {
-        s.x = px + 0.5, s.y = py + 0.5, s.time = 0.5f;
-    } else {
-        s.x = px + double(pixelRandom(settings_.seed, px, py, k, 1));
-        s.y = py + double(pixelRandom(settings_.seed, px, py, k, 2));
-        s.time = pixelRandom(settings_.seed, px, py, k, 3);
-    }
-    return s;
+ImagePlane::PixelPatterns ImagePlane::patternsOf(int px, int py) const {
+    PixelPatterns p;
+    if (patterns_) p.first = patterns_->pattern(patterns_->patternIndex(px, py));
+    if (extra_) p.extra = extra_->pattern(extra_->patternIndex(px, py));
+    return p;
 }
 
 // Wolberg eq. 6.2.1 per colour channel: (Imax - Imin) / (Imax + Imin).

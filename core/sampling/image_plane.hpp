@@ -71,9 +71,16 @@ class ImagePlane {
 public:
     ImagePlane(const ImagePlaneOptions& options, const RenderSettings& settings);
 
+    // The patterns of one pixel, looked up once per pixel.
+    struct PixelPatterns {
+        const PatternPoint* first = nullptr;  // spp samples, or null: the plain default
+        const PatternPoint* extra = nullptr;  // adaptive stochastic's extra samples
+    };
+    PixelPatterns patternsOf(int px, int py) const;
     // Sample k of pixel (px, py) from the pattern (k < spp) or, for k >= spp,
     // from the extra set of adaptive stochastic sampling.
-    CameraSample sample(int px, int py, int k) const;
+    CameraSample sample(int px, int py, int k, const PixelPatterns& patterns) const;
+    CameraSample sample(int px, int py, int k) const { return sample(px, py, k, patternsOf(px, py)); }
 
     // Renders the image. makeShader() is called once per row; the shader is
     // callable as Rgba(const CameraSample&) and has flush(Counters&).
@@ -81,7 +88,6 @@ public:
     Image render(RenderContext& ctx, const char* label, MakeShader makeShader) const;
 
 private:
-    const PatternPoint* point(const std::optional<PatternSet>& set, int px, int py, int k) const;
     bool refineStochastic(const std::vector<Rgba>& values) const;
 
     template <class Shader> Rgba boxPixel(Shader& shade, int px, int py, int& used) const;

@@ -4,7 +4,26 @@
 #include <cmath>
 #include <utility>
 
+#include "core/rng.hpp"
+
 namespace weft {
+
+inline CameraSample ImagePlane::sample(int px, int py, int k, const PixelPatterns& patterns) const {
+    CameraSample s;
+    s.px = px, s.py = py, s.index = std::uint32_t(k);
+    const bool first = k < settings_.spp;
+    if (const PatternPoint* set = first ? patterns.first : patterns.extra) {
+        const PatternPoint& p = set[first ? k : k - settings_.spp];
+        s.x = px + double(p.x), s.y = py + double(p.y), s.time = p.t;
+    } else if (settings_.spp == 1 && k == 0) {
+        s.x = px + 0.5, s.y = py + 0.5, s.time = 0.5f;
+    } else {
+        s.x = px + double(pixelRandom(settings_.seed, px, py, k, 1));
+        s.y = py + double(pixelRandom(settings_.seed, px, py, k, 2));
+        s.time = pixelRandom(settings_.seed, px, py, k, 3);
+    }
+    return s;
+}
 
 template <class Shader>
 Rgba ImagePlane::boxPixel(Shader& shade, int px, int py, int& used) const {
@@ -12,14 +31,15 @@ Rgba ImagePlane::boxPixel(Shader& shade, int px, int py, int& used) const {
     Rgba sum;
     std::vector<Rgba> values;
     const bool stochastic = opt_.adaptive == AdaptiveMode::Stochastic;
+    const PixelPatterns patterns = patternsOf(px, py);
     for (int k = 0; k < spp; ++k) {
-        const Rgba v = shade(sample(px, py, k));
+        const Rgba v = shade(sample(px, py, k, patterns));
         sum += v;
         if (stochastic) values.push_back(v);
     }
     used = spp;
     if (stochastic && refineStochastic(values)) {
-        for (int k = spp; k < spp + opt_.extraSpp; ++k) sum += shade(sample(px, py, k));
+        for (int k = spp; k < spp + opt_.extraSpp; ++k) sum += shade(sample(px, py, k, patterns));
         used += opt_.extraSpp;
     }
     const float n = float(used);
@@ -98,8 +118,9 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
         std::int64_t evaluations = 0;
         for (int x = 0; x < s.width; ++x) {
             if (wide) {
+                const PixelPatterns patterns = patternsOf(x, y);
                 for (int k = 0; k < s.spp; ++k) {
-                    const CameraSample cs = sample(x, y, k);
+                    const CameraSample cs = sample(x, y, k, patterns);
                     const Rgba v = shade(cs);
                     rows[y].insert(rows[y].end(), {float(cs.x), float(cs.y), v.r, v.g, v.b, v.a});
                 }
