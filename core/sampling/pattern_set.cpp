@@ -66,6 +66,8 @@ std::vector<PatternPoint> interleave(const std::vector<Vec2>& basis, int n, int 
 
 PatternSet makeInterleaved(const PatternSpec& spec, int spp, std::uint64_t seed) {
     const auto [n, m] = parseTile(spec.arg);
+    if (double(spp) * n * m > double(1 << 24))
+        throw Error("pattern '" + spec.text + "': " + std::to_string(spp) + " samples per pixel over the tile is more than 2^24 points");
     std::map<std::string, std::string> basisOptions = spec.options;
     std::string basis = "jittered";
     if (auto it = basisOptions.find("basis"); it != basisOptions.end()) basis = canonicalName(it->second), basisOptions.erase(it);

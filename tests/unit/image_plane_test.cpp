@@ -148,3 +148,21 @@ TEST(ImagePlane, InconsistentSettingsAreErrors) {
     EXPECT_THROW(analytic("siemens", 8, 1, {"pattern=bluenoise"}), Error);
     EXPECT_THROW(analytic("siemens", 8, 1, {"pattern=interleaved:4"}), Error);
 }
+
+TEST(ImagePlane, TinyImagesAndExtremeSettingsStayFinite) {
+    for (const char* scene : {"zoneplate", "grating", "checker", "siemens", "lines", "disc"})
+        for (const char* size : {"1x1", "3x2", "2x7"})
+            for (const std::vector<std::string>& sets :
+                 std::vector<std::vector<std::string>>{{"reference=true"}, {"pattern=interleaved:3x2,basis=poisson", "filter=mitchell", "filter_radius=8"},
+                                                       {"adaptive=supersample", "adaptive_depth=5", "adaptive_threshold=0"},
+                                                       {"adaptive=stochastic", "adaptive_threshold=0"}}) {
+                RenderRequest r;
+                r.input = std::string("builtin:") + scene;
+                r.resolution = size;
+                r.spp = 3;
+                r.sets = sets;
+                const RenderOutcome out = renderToImage(r);
+                for (float v : out.image.data()) ASSERT_TRUE(std::isfinite(v)) << scene << " " << size << " " << sets.front();
+                EXPECT_EQ(out.counters.count("image.nonfinite"), 0u);
+            }
+}
