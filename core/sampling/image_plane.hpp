@@ -11,9 +11,12 @@
 //              across pixel boundaries, as a weighted average (Wolberg 6.3.6).
 //   adaptive   supersample: Wolberg 6.2.2, corners of a pixel, split in four
 //              where a corner differs from their mean by more than the
-//              threshold, down to `adaptive_depth` levels; stochastic: 6.3.5,
-//              the pattern's samples first, `adaptive_spp` more where their
-//              contrast (Imax - Imin) / (Imax + Imin) exceeds the threshold.
+//              threshold, down to `adaptive_depth` levels; a square is the
+//              mean of its corners or of its four quarters (area-weighted),
+//              and all samples take the middle of the shutter. stochastic:
+//              6.3.5, the pattern's samples first, `adaptive_spp` more where
+//              their contrast (Imax - Imin) / (Imax + Imin) exceeds the
+//              threshold.
 // Every value is a pure function of (seed, pixel, sample index): images are
 // the same at any thread count.
 #include <tbb/blocked_range.h>

@@ -9,6 +9,7 @@
 // averaged over --seeds seeds as an EXR (DC at the centre, frequencies in
 // cycles per tile), its radial average as CSV, and optionally the points
 // (CSV) and a preview PNG (points beside the periodogram).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -128,6 +129,11 @@ void runPattern(const PatternOptions& o) {
     if (!o.preview.empty()) checkOutputPath(o.preview, "preview");
     int tileW = 1, tileH = 1;
     const std::vector<Vec2> pts = unitPoints(o, o.seed, tileW, tileH);
+    const int R = o.freq > 0 ? o.freq : std::clamp(2 * int(std::ceil(std::sqrt(double(pts.size())))), 16, 128);
+    const double work = double(pts.size()) * (2 * R + 1) * (2 * R + 1) * o.seeds;
+    if (!o.output.empty() && work > 2e10)
+        throw Error("periodogram of " + std::to_string(pts.size()) + " points over " + std::to_string(2 * R + 1) + "^2 frequencies and " +
+                    std::to_string(o.seeds) + " seeds is too much work; lower --seeds or --freq");
     printSummary(o, pts, tileW, tileH);
     if (!o.pointsCsv.empty()) {
         std::string text = "x,y\n";
@@ -136,7 +142,6 @@ void runPattern(const PatternOptions& o) {
         writeText(o.pointsCsv, text, "points");
     }
     if (o.output.empty()) return;
-    const int R = o.freq > 0 ? o.freq : std::max(16, 2 * int(std::ceil(std::sqrt(double(pts.size())))));
     std::vector<double> sum;
     for (int s = 0; s < o.seeds; ++s) {
         int w = 0, h = 0;
@@ -163,7 +168,7 @@ const CommandRegistrar registrar{{"pattern", 40, [](CLI::App& app) {
     cmd->add_option("--tile", o->tile, "analyse an NxM tile of pixels (a plain pattern repeats in each)");
     cmd->add_option("--seed", o->seed, "seed of the printed set (the periodogram uses seed..seed+seeds-1)");
     cmd->add_option("--seeds", o->seeds, "sets averaged in the periodogram")->check(CLI::Range(1, 100000));
-    cmd->add_option("--freq", o->freq, "periodogram half-size R: frequencies -R..R per tile (default 2 sqrt(points))")
+    cmd->add_option("--freq", o->freq, "periodogram half-size R: frequencies -R..R per tile (default 2 sqrt(points) in [16, 128])")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("-o,--output", o->output, "periodogram EXR");
     cmd->add_option("--csv", o->csv, "radially averaged spectrum (default: OUTPUT with _radial.csv)");
