@@ -23,18 +23,29 @@ void splitOption(const std::string& part, const std::string& text, PatternSpec& 
     spec.options[part.substr(0, eq)] = part.substr(eq + 1);
 }
 
-// Third coordinate of every sample: one Latin-hypercube stratum of [0, 1)
-// each over the whole tile, so time (or slice offset) is stratified across
-// interleaved pixels too. Regular sets take stratum centres.
-void assignThirdCoordinate(std::vector<PatternPoint>& points, bool centred, std::uint64_t seed) {
-    const std::size_t n = points.size();
-    std::vector<std::uint32_t> strata(n);
-    std::iota(strata.begin(), strata.end(), 0u);
+// Third coordinate of every sample (time, or slice offset): stratified in
+// each pixel, sample k of pixel j in stratum sigma_j(k) of spp, and over the
+// whole tile, pixel j taking sub-stratum pi_s(j) of M inside stratum s, so
+// the tile's M * spp samples fill M * spp strata once each. The random
+// permutations decorrelate time from position. Regular sets take centres.
+void assignThirdCoordinate(std::vector<PatternPoint>& points, int patterns, int spp, bool centred, std::uint64_t seed) {
     Rng rng(hashCombine(seed, 0x7431ull));
-    for (std::size_t i = n; i > 1; --i) std::swap(strata[i - 1], strata[rng.next() % i]);
-    for (std::size_t i = 0; i < n; ++i) {
-        const double u = centred ? 0.5 : rng.uniformDouble();
-        points[i].t = std::min(float((strata[i] + u) / double(n)), 0x1.fffffep-1f);
+    auto permutation = [&](int n) {
+        std::vector<int> p(n);
+        std::iota(p.begin(), p.end(), 0);
+        for (int i = n; i > 1; --i) std::swap(p[i - 1], p[rng.next() % std::uint64_t(i)]);
+        return p;
+    };
+    std::vector<std::vector<int>> subStratum(spp);
+    for (auto& pi : subStratum) pi = permutation(patterns);
+    for (int j = 0; j < patterns; ++j) {
+        const std::vector<int> sigma = permutation(spp);
+        for (int k = 0; k < spp; ++k) {
+            const int s = sigma[k];
+            const double u = centred ? 0.5 : rng.uniformDouble();
+            const double t = (s + (subStratum[s][j] + u) / patterns) / spp;
+            points[std::size_t(j) * spp + k].t = std::min(float(t), 0x1.fffffep-1f);
+        }
     }
 }
 
@@ -74,7 +85,7 @@ PatternSet makeInterleaved(const PatternSpec& spec, int spp, std::uint64_t seed)
     if (basis == "interleaved") throw Error("pattern '" + spec.text + "': the basis of an interleaved set cannot itself be interleaved");
     const std::vector<Vec2> points = generatePoints(basis, spp * n * m, basisOptions, seed);
     std::vector<PatternPoint> samples = interleave(points, n, m, spp);
-    assignThirdCoordinate(samples, basis == "regular", seed);
+    assignThirdCoordinate(samples, n * m, spp, basis == "regular", seed);
     return PatternSet(n, m, spp, std::move(samples));
 }
 
@@ -128,7 +139,7 @@ PatternSet makePatternSet(const PatternSpec& spec, int spp, std::uint64_t seed) 
         throw Error("pattern '" + spec.text + "': only interleaved takes ':ARG' (interleaved:NxM)");
     std::vector<PatternPoint> samples;
     for (const Vec2& p : generatePoints(spec.name, spp, spec.options, seed)) samples.push_back({unitFloat(p.x), unitFloat(p.y), 0.5f});
-    assignThirdCoordinate(samples, spec.name == "regular", seed);
+    assignThirdCoordinate(samples, 1, spp, spec.name == "regular", seed);
     return PatternSet(1, 1, spp, std::move(samples));
 }
 

@@ -198,11 +198,14 @@ TEST(PatternSet, BalancingKeepsExactlySppPerPixelForAnyBasis) {
     }
 }
 
-TEST(PatternSet, ThirdCoordinateIsOneStratumPerSampleOverTheTile) {
+TEST(PatternSet, ThirdCoordinateIsStratifiedInEachPixelAndOverTheTile) {
     const PatternSet set = makePatternSet("interleaved:4x4", 4, 8);
     std::vector<int> strata(64, 0);
-    for (int j = 0; j < 16; ++j)
-        for (int k = 0; k < 4; ++k) ++strata[int(set.pattern(j)[k].t * 64)];
+    for (int j = 0; j < 16; ++j) {
+        std::vector<int> own(4, 0);
+        for (int k = 0; k < 4; ++k) ++strata[int(set.pattern(j)[k].t * 64)], ++own[int(set.pattern(j)[k].t * 4)];
+        for (int s : own) EXPECT_EQ(s, 1) << "pixel " << j;
+    }
     for (int s : strata) EXPECT_EQ(s, 1);
 }
 

@@ -26,7 +26,7 @@ namespace weft {
 namespace {
 
 struct ReportOptions {
-    std::vector<std::string> scenes{"zoneplate", "grating", "checker"};
+    std::vector<std::string> scenes{"zoneplate", "grating", "checker", "disc"};
     std::vector<std::string> patterns{"regular", "jittered", "random", "poisson", "point_diffusion", "lloyd",
                                       "hammersley", "lp", "none", "interleaved:4x4,basis=jittered",
                                       "interleaved:4x4,basis=lp", "interleaved:4x4,basis=lloyd"};
