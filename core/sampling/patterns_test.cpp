@@ -230,20 +230,47 @@ TEST(Periodogram, RegularGridHasPeaksOnlyOnItsReciprocalLattice) {
 }
 
 TEST(Periodogram, WhiteNoiseIsFlatAndBlueNoiseLacksLowFrequencies) {
-    auto averaged = [](const char* name) {
+    auto averaged = [](const char* name, std::map<std::string, std::string> options) {
         std::vector<double> sum;
         for (int s = 0; s < 24; ++s) {
-            const auto p = periodogram(points(name, 256, s), 24);
+            const auto p = periodogram(points(name, 256, s, options), 24);
             if (sum.empty()) sum.assign(p.size(), 0);
             for (std::size_t i = 0; i < p.size(); ++i) sum[i] += p[i] / 24;
         }
         return radialAverage(sum, 24);
     };
-    const auto white = averaged("random"), blue = averaged("lloyd");
+    const auto white = averaged("random", {}), blue = averaged("lloyd", {{"iterations", "10"}, {"oversample", "16"}});
     double whiteMean = 0, blueLow = 0;
     for (const RadialBin& b : white) whiteMean += b.power / white.size();
     for (int r = 1; r <= 6; ++r) blueLow += blue[r - 1].power / 6;  // sqrt(256) = 16: well below
     EXPECT_NEAR(whiteMean, 1.0, 0.05);
     EXPECT_LT(blueLow, 0.2);
     EXPECT_GT(blue[19].power, 0.8);  // and the energy is at high frequencies
+}
+
+TEST(Periodogram, RepeatedPatternHasEnergyOnlyOnTheTileLatticeInterleavedSpreadsIt) {
+    // Keller & Heidrich, Figure 1: the same pattern in every pixel of a 4x4
+    // tile is periodic with the pixel, so its spectrum (in cycles per tile)
+    // lives on multiples of 4; an interleaved set is not.
+    auto scaled = [](const PatternSet& set, int tile) {
+        std::vector<Vec2> out;
+        for (int y = 0; y < tile; ++y)
+            for (int x = 0; x < tile; ++x)
+                for (int k = 0; k < set.samplesPerPixel(); ++k) {
+                    const PatternPoint& p = set.sample(x, y, k);
+                    out.push_back({(x + p.x) / tile, (y + p.y) / tile});
+                }
+        return out;
+    };
+    const auto repeated = periodogram(scaled(makePatternSet("jittered", 4, 2), 4), 12);
+    const auto interleaved = periodogram(scaled(makePatternSet("interleaved:4x4,basis=jittered", 4, 2), 4), 12);
+    double offLatticeRepeated = 0, offLatticeInterleaved = 0;
+    for (int fy = -12; fy <= 12; ++fy)
+        for (int fx = -12; fx <= 12; ++fx) {
+            if (fx % 4 == 0 && fy % 4 == 0) continue;
+            offLatticeRepeated += repeated[std::size_t(fy + 12) * 25 + fx + 12];
+            offLatticeInterleaved += interleaved[std::size_t(fy + 12) * 25 + fx + 12];
+        }
+    EXPECT_LT(offLatticeRepeated, 1e-9);
+    EXPECT_GT(offLatticeInterleaved, 100.0);
 }
