@@ -274,3 +274,27 @@ TEST(Periodogram, RepeatedPatternHasEnergyOnlyOnTheTileLatticeInterleavedSpreads
     EXPECT_LT(offLatticeRepeated, 1e-9);
     EXPECT_GT(offLatticeInterleaved, 100.0);
 }
+
+TEST(Convergence, StratificationBeatsRandomOnAnEdge) {
+    // RMS error of the mean of a disc indicator over seeds: random points
+    // converge as N^-1/2 (x4 from 16 to 256 points), stratified and
+    // Owen-scrambled net points as N^-3/4 on an edge (x8).
+    auto rmsError = [](const char* name, int n, std::map<std::string, std::string> options = {}) {
+        const double exact = std::numbers::pi * 0.16;
+        double sq = 0;
+        for (int s = 0; s < 200; ++s) {
+            double est = 0;
+            for (const Vec2& p : points(name, n, 500 + s, options))
+                est += (p.x - 0.5) * (p.x - 0.5) + (p.y - 0.45) * (p.y - 0.45) < 0.16 ? 1.0 : 0.0;
+            sq += (est / n - exact) * (est / n - exact);
+        }
+        return std::sqrt(sq / 200);
+    };
+    const double random = rmsError("random", 16) / rmsError("random", 256);
+    const double jittered = rmsError("jittered", 16) / rmsError("jittered", 256);
+    const double lp = rmsError("lp", 16, {{"scramble", "owen"}}) / rmsError("lp", 256, {{"scramble", "owen"}});
+    EXPECT_GT(random, 3.0);
+    EXPECT_LT(random, 5.5);
+    EXPECT_GT(jittered, 6.0);
+    EXPECT_GT(lp, 6.0);
+}
