@@ -54,18 +54,20 @@ template <class Shader>
 Rgba ImagePlane::adaptivePixel(Shader& shade, const std::vector<Rgba>& corners, int px, int py, int& used) const {
     const int L = 1 << opt_.depth;
     const int W1 = settings_.width + 1;
-    std::vector<std::pair<int, Rgba>> cache;
+    // Lattice values of this pixel, reused across pixels of the thread.
+    thread_local std::vector<Rgba> cache;
+    thread_local std::vector<char> known;
+    cache.resize(std::size_t(L + 1) * (L + 1));
+    known.assign(cache.size(), 0);
     used = 4;
     auto value = [&](int i, int j) -> Rgba {
         if ((i == 0 || i == L) && (j == 0 || j == L)) return corners[std::size_t(py + j / L) * W1 + px + i / L];
-        const int key = j * (L + 1) + i;
-        for (const auto& [k, v] : cache)
-            if (k == key) return v;
+        const std::size_t key = std::size_t(j) * (L + 1) + i;
+        if (known[key]) return cache[key];
         CameraSample s;
         s.x = px + double(i) / L, s.y = py + double(j) / L, s.px = px, s.py = py, s.index = std::uint32_t(used++);
-        const Rgba v = shade(s);
-        cache.emplace_back(key, v);
-        return v;
+        known[key] = 1;
+        return cache[key] = shade(s);
     };
     auto differs = [&](const Rgba& c, const Rgba& m) {
         const float t = float(opt_.threshold);
