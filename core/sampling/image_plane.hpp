@@ -93,6 +93,7 @@ public:
 private:
     bool refineStochastic(const std::vector<Rgba>& values) const;
 
+    template <class Shader> void boxRow(Shader& shade, int y, Image& image) const;
     template <class Shader> Rgba boxPixel(Shader& shade, int px, int py, int& used) const;
     template <class Shader> Rgba adaptivePixel(Shader& shade, const std::vector<Rgba>& corners, int px, int py, int& used) const;
     template <class MakeShader> std::vector<Rgba> cornerGrid(RenderContext& ctx, MakeShader& make) const;

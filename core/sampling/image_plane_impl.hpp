@@ -105,6 +105,30 @@ std::vector<Rgba> ImagePlane::cornerGrid(RenderContext& ctx, MakeShader& make) c
     return corners;
 }
 
+// Plain supersampling of one row, one regular sub-grid at a time (Keller &
+// Heidrich): sample k of the pixels x = a, a + n, a + 2n... (n the tile
+// width) all sit at the same offset, so consecutive shader calls see a
+// regular grid and stay coherent. Each pixel still sums its own samples in
+// index order: the same image as pixel-by-pixel order.
+template <class Shader>
+void ImagePlane::boxRow(Shader& shade, int y, Image& image) const {
+    const int W = settings_.width, spp = settings_.spp;
+    thread_local std::vector<Rgba> sum;
+    thread_local std::vector<PixelPatterns> patterns;
+    sum.assign(W, Rgba{});
+    patterns.resize(W);
+    for (int x = 0; x < W; ++x) patterns[x] = patternsOf(x, y);
+    const int n = patterns_ ? patterns_->tileWidth() : 1;
+    for (int k = 0; k < spp; ++k)
+        for (int a = 0; a < n; ++a)
+            for (int x = a; x < W; x += n) sum[x] += shade(sample(x, y, k, patterns[x]));
+    for (int x = 0; x < W; ++x) {
+        float* px = image.pixel(x, y);
+        const float n = float(spp);
+        px[0] = sum[x].r / n, px[1] = sum[x].g / n, px[2] = sum[x].b / n, px[3] = sum[x].a / n;
+    }
+}
+
 template <class MakeShader>
 Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeShader) const {
     const RenderSettings& s = settings_;
@@ -118,6 +142,12 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
     forEachRow(s, label, [&](int y) {
         auto shade = makeShader();
         std::int64_t evaluations = 0;
+        if (!adaptive && !wide) {
+            boxRow(shade, y, image);
+            shade.flush(ctx.counters);
+            ctx.counters.add("image.samples", std::int64_t(s.width) * s.spp);
+            return;
+        }
         for (int x = 0; x < s.width; ++x) {
             if (wide) {
                 const PixelPatterns patterns = patternsOf(x, y);
