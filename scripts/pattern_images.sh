@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the README's pattern images (docs/images/periodograms*.png,
-# zoneplate_strip.png) and docs/sampling_report.csv with build/bin/weft and
+# zoneplate_strip.png, motion_blur_strip.png) and docs/sampling_report.csv with build/bin/weft and
 # oiiotool. Usage: scripts/pattern_images.sh [--threads N]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,5 +29,15 @@ for p in regular jittered none interleaved:4x4,basis=jittered interleaved:4x4,ba
 done
 "$weft" render builtin:zoneplate --res 128x128 --set reference=true --threads "$threads" -o "$tmp/z6.exr" --preview "$tmp/z6.png"
 oiiotool "$tmp"/z{1,2,3,4,5,6}.png --mosaic:pad=4 6x1 -o docs/images/zoneplate_strip.png
+
+i=0
+for p in regular none interleaved:4x4,basis=jittered; do
+  i=$((i + 1))
+  set_pattern=()
+  [ "$p" != none ] && set_pattern=(--set "pattern=$p")
+  "$weft" render builtin:disc --res 128x128 --spp 4 "${set_pattern[@]}" --threads "$threads" -o "$tmp/d$i.exr" --preview "$tmp/d$i.png"
+done
+"$weft" render builtin:disc --res 128x128 --set reference=true --threads "$threads" -o "$tmp/d4.exr" --preview "$tmp/d4.png"
+oiiotool "$tmp"/d{1,2,3,4}.png --mosaic:pad=4 4x1 -o docs/images/motion_blur_strip.png
 
 "$weft" sampling-report --threads "$threads" -o docs/sampling_report.csv

@@ -17,8 +17,10 @@
 //              6.3.5, the pattern's samples first, `adaptive_spp` more where
 //              their contrast (Imax - Imin) / (Imax + Imin) exceeds the
 //              threshold.
-// Every value is a pure function of (seed, pixel, sample index): images are
-// the same at any thread count.
+// Plain supersampling visits each row one regular sub-grid at a time, so an
+// interleaved set costs the same per sample as one regular grid. Every value
+// is a pure function of (seed, pixel, sample index): images are the same at
+// any thread count.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
