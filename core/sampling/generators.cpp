@@ -19,11 +19,15 @@ const PatternGeneratorRegistry& patternGenerators() {
     return registry;
 }
 
-std::vector<Vec2> generatePoints(const std::string& name, int count, const std::map<std::string, std::string>& options,
-                                 std::uint64_t seed) {
+const PatternGeneratorInfo& patternGenerator(const std::string& name) {
     if (!patternGenerators().has(name))
         throw Error("unknown pattern '" + name + "' (known: " + patternGenerators().names() + ", interleaved:NxM)");
-    const PatternGeneratorInfo& info = patternGenerators().get(name);
+    return patternGenerators().get(name);
+}
+
+std::vector<Vec2> generatePoints(const std::string& name, int count, const std::map<std::string, std::string>& options,
+                                 std::uint64_t seed) {
+    const PatternGeneratorInfo& info = patternGenerator(name);
     if (count < 1) throw Error("pattern '" + name + "': the point count must be at least 1");
     const ParamSet parsed = info.options.parse(options);
     return info.generate(count, parsed, seed);

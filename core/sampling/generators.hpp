@@ -25,6 +25,8 @@ struct PatternGeneratorInfo {
 
 using PatternGeneratorRegistry = NamedRegistry<PatternGeneratorInfo>;
 const PatternGeneratorRegistry& patternGenerators();
+// The named generator; an unknown name is an error listing the known ones.
+const PatternGeneratorInfo& patternGenerator(const std::string& name);
 
 // count points of the named generator, options given as key=value text.
 std::vector<Vec2> generatePoints(const std::string& name, int count, const std::map<std::string, std::string>& options,

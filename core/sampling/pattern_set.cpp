@@ -155,11 +155,11 @@ void validatePatternSpec(const std::string& text) {
         std::string basis = "jittered";
         if (auto it = options.find("basis"); it != options.end()) basis = canonicalName(it->second), options.erase(it);
         if (basis == "interleaved") throw Error("pattern '" + text + "': the basis of an interleaved set cannot itself be interleaved");
-        patternGenerators().get(basis).options.parse(options);
+        patternGenerator(basis).options.parse(options);
         return;
     }
     if (!spec.arg.empty()) throw Error("pattern '" + text + "': only interleaved takes ':ARG' (interleaved:NxM)");
-    patternGenerators().get(spec.name).options.parse(spec.options);
+    patternGenerator(spec.name).options.parse(spec.options);
 }
 
 }  // namespace weft
