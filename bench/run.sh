@@ -2,5 +2,6 @@
 # Runs every benchmark; each prints its ratios measured side by side in one run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+build/bin/weft_bench_patterns --threads 2
 python3 bench/kraus_tables.py "$@"
 /usr/bin/python3 bench/volume_vs_vdb_render.py "$@"

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "core/analytic2d.hpp"
 #include "core/error.hpp"
 #include "core/json_doc.hpp"
 #include "core/params.hpp"
@@ -236,7 +237,17 @@ Scene loadBareVdb(const std::string& path, double aspect, const std::string& gri
     return sceneAroundVolume(std::move(vol), path, aspect);
 }
 
+// The analytic 2D images need no volume: the scene only names the technique.
+Scene loadAnalyticBuiltin(const std::string& name) {
+    Scene scene;
+    scene.source = "builtin:" + name;
+    scene.render.technique = "analytic.2d";
+    scene.render.params["scene"] = name;
+    return scene;
+}
+
 Scene loadBuiltin(const std::string& name, double aspect) {
+    if (isAnalyticSceneName(name)) return loadAnalyticBuiltin(name);
     if (name != "cloud" && name != "sphere")
         throw Error("unknown built-in scene 'builtin:" + name + "' (known: " + builtinSceneNames() + ")");
     Volume vol;
@@ -260,7 +271,9 @@ std::string lowerExtension(const std::string& path) {
 
 }  // namespace
 
-const char* builtinSceneNames() { return "builtin:cloud|builtin:sphere"; }
+const char* builtinSceneNames() {
+    return "builtin:cloud|builtin:sphere|builtin:zoneplate|builtin:grating|builtin:checker|builtin:siemens|builtin:lines|builtin:disc";
+}
 
 BBoxd Scene::worldBox() const {
     BBoxd box;

@@ -12,6 +12,11 @@
 //   ert         early ray termination once opacity reaches this (1 = off)
 //   skip_empty  skip regions without active voxels (OpenVDB HDDA); the image
 //               is unchanged, only fewer samples are taken
+//   offset_pattern  per-pixel offsets of the first sample from a pattern set's
+//               third coordinate: interleaved:4x4 gives the 16 pixels of each
+//               tile 16 different strata of the step (Keller & Heidrich 4.3)
+//   pattern, filter, adaptive...  image-plane sampling and reconstruction
+//               (core/sampling/image_plane.hpp)
 //
 // Counters: rays.camera, volume.samples (trilinear lookups of the grid).
 #include <openvdb/tools/Interpolation.h>
@@ -21,6 +26,7 @@
 
 #include "core/pixel_loop.hpp"
 #include "core/rng.hpp"
+#include "core/sampling/image_plane.hpp"
 #include "core/volume_ray.hpp"
 #include "plugins/technique.hpp"
 
@@ -36,12 +42,31 @@ struct RaymarchParams {
     bool jitter;
     float ertOpacity;
     bool skipEmpty;
+    std::string offsetPattern;
 };
+
+std::vector<ParamSpec> raymarchParams() {
+    std::vector<ParamSpec> specs = {
+        floatParam("step", 0.5, 1e-4, 64, "distance between samples along a ray, in voxels"),
+        boolParam("jitter", false, "random per-ray offset of the first sample (trades banding for noise)"),
+        floatParam("ert", 0.99, 0, 1, "early ray termination once opacity reaches this (1 = never)"),
+        boolParam("skip_empty", false, "skip regions without active voxels (OpenVDB HDDA); same image, fewer samples"),
+        stringParam("offset_pattern", "", "offset of the first sample per pixel from a pattern set's third coordinate, "
+                                          "e.g. interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: jitter or centre",
+                    [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }),
+    };
+    for (ParamSpec& spec : imagePlaneParamSpecs()) specs.push_back(std::move(spec));
+    return specs;
+}
 
 class Raymarch final : public Technique {
 public:
     Raymarch(const Scene& scene, const ParamSet& p)
-        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), p.getBool("skip_empty")} {
+        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), p.getBool("skip_empty"),
+                  p.getString("offset_pattern")},
+          plane_(readImagePlaneOptions(p)) {
+        if (params_.jitter && !params_.offsetPattern.empty())
+            throw Error("volume.raymarch: jitter=true and offset_pattern both set the first sample's offset; choose one");
         if (scene.volumes.size() != 1)
             throw Error("volume.raymarch renders exactly one volume; the scene has " + std::to_string(scene.volumes.size()));
         const Volume& vol = scene.volumes.front();
@@ -54,30 +79,40 @@ public:
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
-        Image image = Image::rgba(s.width, s.height);
-        const Volume& vol = scene.volumes.front();
-        forEachRow(s, "volume.raymarch", [&](int y) {
-            const auto accessor = vol.grid->getConstAccessor();  // the sampler keeps a pointer to it
-            Sampler sampler(accessor, vol.grid->transform());
+        std::optional<PatternSet> offsets;
+        if (!params_.offsetPattern.empty()) offsets = makePatternSet(params_.offsetPattern, s.spp, hashCombine(s.seed, 0x0ff5));
+        const ImagePlane plane(plane_, s);
+        // One per row: its own grid accessor and HDDA, and its counts.
+        struct Shader {
+            const Raymarch& self;
+            const Scene& scene;
+            const RenderSettings& s;
+            const std::optional<PatternSet>& offsets;
+            openvdb::FloatGrid::ConstAccessor accessor;
+            Sampler sampler;  // keeps a pointer to accessor: Shader is built in place, never copied
             std::optional<Intersector> hdda;
-            if (intersector_) hdda.emplace(*intersector_);
-            std::int64_t samples = 0;
-            for (int x = 0; x < s.width; ++x) {
-                float* px = image.pixel(x, y);
-                for (int i = 0; i < s.spp; ++i) {
-                    const double u = s.spp == 1 ? 0.5 : pixelRandom(s.seed, x, y, i, 1);
-                    const double v = s.spp == 1 ? 0.5 : pixelRandom(s.seed, x, y, i, 2);
-                    const Ray ray = scene.camera.generate(x + u, y + v, s.width, s.height);
-                    const float offset = params_.jitter ? pixelRandom(s.seed, x, y, i, 0) : 0.5f;
-                    const RayAccumulator acc = march(vol, ray, offset, sampler, hdda ? &*hdda : nullptr, samples);
-                    px[0] += acc.r, px[1] += acc.g, px[2] += acc.b, px[3] += acc.opacity();
-                }
-                for (int c = 0; c < 4; ++c) px[c] /= float(s.spp);
+            std::int64_t samples = 0, rays = 0;
+
+            Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o)
+                : self(r), scene(sc), s(st), offsets(o), accessor(sc.volumes.front().grid->getConstAccessor()),
+                  sampler(accessor, sc.volumes.front().grid->transform()) {
+                if (r.intersector_) hdda.emplace(*r.intersector_);
             }
-            ctx.counters.add("rays.camera", std::int64_t(s.width) * s.spp);
-            ctx.counters.add("volume.samples", samples);
-        });
-        return image;
+            Rgba operator()(const CameraSample& c) {
+                const Ray ray = scene.camera.generate(c.x, c.y, s.width, s.height);
+                float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.5f;
+                if (offsets) offset = offsets->sample(c.px, c.py, int(c.index % std::uint32_t(s.spp))).t;
+                const RayAccumulator acc =
+                    self.march(scene.volumes.front(), ray, offset, sampler, hdda ? &*hdda : nullptr, samples);
+                ++rays;
+                return {acc.r, acc.g, acc.b, acc.opacity()};
+            }
+            void flush(Counters& counters) const {
+                counters.add("rays.camera", rays);
+                counters.add("volume.samples", samples);
+            }
+        };
+        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets); });
     }
 
 private:
@@ -115,17 +150,14 @@ private:
     }
 
     RaymarchParams params_;
+    ImagePlaneOptions plane_;
     std::optional<Intersector> intersector_;
 };
 
 const TechniqueRegistrar registrar{{
     "volume.raymarch",
     "emission-absorption ray marching at a fixed step (the reference volume renderer)",
-    ParamTable("volume.raymarch",
-               {floatParam("step", 0.5, 1e-4, 64, "distance between samples along a ray, in voxels"),
-                boolParam("jitter", false, "random per-ray offset of the first sample (trades banding for noise)"),
-                floatParam("ert", 0.99, 0, 1, "early ray termination once opacity reaches this (1 = never)"),
-                boolParam("skip_empty", false, "skip regions without active voxels (OpenVDB HDDA); same image, fewer samples")}),
+    ParamTable("volume.raymarch", raymarchParams()),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<Raymarch>(scene, p); },
 }};
 

@@ -1,0 +1,112 @@
+#pragma once
+// Image-plane sampling and reconstruction for any technique that traces
+// camera rays. The technique supplies a shader (camera sample -> RGBA); this
+// decides where samples go and how they become pixels:
+//   pattern    a PatternSet spec (pattern_set.hpp): supersampling with the
+//              same pattern in every pixel or an interleaved set. Empty keeps
+//              the plain default: the pixel centre at 1 spp, else independent
+//              uniform positions per pixel and sample.
+//   filter     box (the pixel's own samples) or a wider reconstruction filter:
+//              every sample within the filter radius of a pixel centre counts,
+//              across pixel boundaries, as a weighted average (Wolberg 6.3.6).
+//   adaptive   supersample: Wolberg 6.2.2, corners of a pixel, split in four
+//              where a corner differs from their mean by more than the
+//              threshold, down to `adaptive_depth` levels; a square is the
+//              mean of its corners or of its four quarters (area-weighted),
+//              and all samples take the middle of the shutter. stochastic:
+//              6.3.5, the pattern's samples first, `adaptive_spp` more where
+//              their contrast (Imax - Imin) / (Imax + Imin) exceeds the
+//              threshold.
+// Plain supersampling visits each row one regular sub-grid at a time, so an
+// interleaved set costs the same per sample as one regular grid. Every value
+// is a pure function of (seed, pixel, sample index): images are the same at
+// any thread count.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/counters.hpp"
+#include "core/image.hpp"
+#include "core/params.hpp"
+#include "core/pixel_loop.hpp"
+#include "core/render_context.hpp"
+#include "core/sampling/filters.hpp"
+#include "core/sampling/pattern_set.hpp"
+
+namespace weft {
+
+struct Rgba {
+    float r = 0, g = 0, b = 0, a = 0;
+    Rgba& operator+=(const Rgba& o) { r += o.r, g += o.g, b += o.b, a += o.a; return *this; }
+    Rgba operator*(float s) const { return {r * s, g * s, b * s, a * s}; }
+};
+
+// Where a camera ray goes: continuous image position, a time in [0, 1), the
+// pixel it belongs to and its index there (for the technique's own random numbers).
+struct CameraSample {
+    double x = 0, y = 0;
+    float time = 0.5f;
+    int px = 0, py = 0;
+    std::uint32_t index = 0;
+};
+
+enum class AdaptiveMode { Off, Supersample, Stochastic };
+
+struct ImagePlaneOptions {
+    std::string pattern;
+    FilterKind filter = FilterKind::Box;
+    double filterRadius = 0;
+    AdaptiveMode adaptive = AdaptiveMode::Off;
+    double threshold = 0.05;
+    int depth = 3;
+    int extraSpp = 16;
+};
+
+// pattern, filter, filter_radius, adaptive, adaptive_threshold, adaptive_depth, adaptive_spp.
+std::vector<ParamSpec> imagePlaneParamSpecs();
+// Reads and cross-checks them (adaptive modes reconstruct with the box filter).
+ImagePlaneOptions readImagePlaneOptions(const ParamSet& p);
+
+class ImagePlane {
+public:
+    ImagePlane(const ImagePlaneOptions& options, const RenderSettings& settings);
+
+    // The patterns of one pixel, looked up once per pixel.
+    struct PixelPatterns {
+        const PatternPoint* first = nullptr;  // spp samples, or null: the plain default
+        const PatternPoint* extra = nullptr;  // adaptive stochastic's extra samples
+    };
+    PixelPatterns patternsOf(int px, int py) const;
+    // Sample k of pixel (px, py) from the pattern (k < spp) or, for k >= spp,
+    // from the extra set of adaptive stochastic sampling.
+    CameraSample sample(int px, int py, int k, const PixelPatterns& patterns) const;
+    CameraSample sample(int px, int py, int k) const { return sample(px, py, k, patternsOf(px, py)); }
+
+    // Renders the image. makeShader() is called once per row; the shader is
+    // callable as Rgba(const CameraSample&) and has flush(Counters&).
+    template <class MakeShader>
+    Image render(RenderContext& ctx, const char* label, MakeShader makeShader) const;
+
+private:
+    bool refineStochastic(const std::vector<Rgba>& values) const;
+
+    template <class Shader> void boxRow(Shader& shade, int y, Image& image) const;
+    template <class Shader> Rgba boxPixel(Shader& shade, int px, int py, int& used) const;
+    template <class Shader> Rgba adaptivePixel(Shader& shade, const std::vector<Rgba>& corners, int px, int py, int& used) const;
+    template <class MakeShader> std::vector<Rgba> cornerGrid(RenderContext& ctx, MakeShader& make) const;
+    Image gather(const std::vector<std::vector<float>>& rows) const;
+
+    ImagePlaneOptions opt_;
+    RenderSettings settings_;
+    ReconstructionFilter filter_;
+    std::optional<PatternSet> patterns_, extra_;
+};
+
+}  // namespace weft
+
+#include "core/sampling/image_plane_impl.hpp"
