@@ -49,6 +49,14 @@ RenderSettings settingsFor(const RenderRequest& r, const Scene& scene) {
     return s;
 }
 
+// volume.raymarch, or volume.singlescatter for `--set compat=vdb_render`
+// (a vdb_render user's command line works as it is).
+std::string defaultTechnique(const std::vector<std::string>& sets) {
+    for (const std::string& kv : sets)
+        if (kv == "compat=vdb_render") return "volume.singlescatter";
+    return "volume.raymarch";
+}
+
 // Replaces NaN/Inf by 0 (a last guard: techniques must not produce them) and counts them.
 std::int64_t scrubNonFinite(Image& image) {
     std::int64_t bad = 0;
@@ -106,7 +114,7 @@ RenderOutcome renderToImage(const RenderRequest& r) {
     ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     ctx.settings = settingsFor(r, scene);
 
-    const std::string name = r.technique.value_or(scene.render.technique.value_or("volume.raymarch"));
+    const std::string name = r.technique.value_or(scene.render.technique.value_or(defaultTechnique(r.sets)));
     const TechniqueInfo& info = techniques().get(name);
     std::map<std::string, std::string> given = scene.render.params;
     for (const std::string& kv : r.sets) {

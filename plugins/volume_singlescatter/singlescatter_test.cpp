@@ -169,3 +169,12 @@ TEST(SingleScatter, CameraOptionsNeedCompatAndFollowVdbRenderRules) {
     EXPECT_NE(error({"absorb=1,2"}).find("absorb"), std::string::npos);
     EXPECT_NE(error({"light=0,0,0"}).find("light"), std::string::npos);
 }
+
+TEST(SingleScatter, VdbRenderCommandLineWorksWithoutNamingTheTechnique) {
+    test::TempDir dir;
+    const std::string out = (dir / "out.exr").string();
+    const auto r = test::runWeft("render '" + kSmoke + "' --set compat=vdb_render --set translate=0,20,80 --res 32x32 -o " +
+                                 out + " --stats " + (dir / "s.json").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(test::readBytes(dir / "s.json").find("\"technique\": \"volume.singlescatter\""), std::string::npos);
+}
