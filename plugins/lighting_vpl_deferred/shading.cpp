@@ -55,7 +55,8 @@ void shadeTask(const Scene& scene, const std::vector<GTexel>& split, const SubBu
             lit.push_back(k);
             if (!cfg.visibility) continue;
             rays.emplace_back();
-            setRay(rays.back(), origin, t.position + t.normal * cfg.eps - origin, 0.0f, 1.0f);
+            // Ends just short of the texel, so texels on an edge are not shadowed by the neighbouring face.
+            setRay(rays.back(), origin, t.position + t.normal * cfg.eps - origin, 0.0f, 1.0f - 1e-4f);
         }
         counts.fragments += std::int64_t(texels.size());
         if (cfg.visibility && !rays.empty()) {
@@ -117,7 +118,7 @@ void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const B
         const float cosX = t.normal.dot(to), cosL = -e.normal.dot(to);
         if (cosX > 0 && cosL > 0) {
             ++rays;
-            if (!accel.occluded(origin, to, 0.0f, dist * (1.0f - 1e-4f))) add(to, e.radiance * (cosX * cosL / (d2 * e.pdfArea)));
+            if (!accel.occluded(origin, to, eps, dist * (1.0f - 1e-4f))) add(to, e.radiance * (cosX * cosL / (d2 * e.pdfArea)));
         }
     }
     for (const Light& light : scene.lights) {
@@ -125,7 +126,7 @@ void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const B
         const float cosX = t.normal.dot(li.wi);
         if (cosX <= 0) continue;
         ++rays;
-        if (!accel.occluded(origin, li.wi, 0.0f, li.distance * (1.0f - 1e-4f))) add(li.wi, li.irradiance * cosX);
+        if (!accel.occluded(origin, li.wi, eps, li.distance * (1.0f - 1e-4f))) add(li.wi, li.irradiance * cosX);
     }
 }
 

@@ -56,6 +56,7 @@ VplParams readParams(const ParamSet& ps) {
     v.paths = std::uint32_t(ps.getInt("vpls"));
     std::tie(v.n, v.m) = parsePair(ps.getString("interleave"), 64);
     std::tie(v.p, v.q) = parsePair(ps.getString("block"), 4096);
+    if (!ps.wasSet("block")) v.p = (v.p + v.n - 1) / v.n * v.n, v.q = (v.q + v.m - 1) / v.m * v.m;  // default: 16x16 rounded up to the pattern
     v.twoPass = ps.getString("split") == "two_pass";
     v.visibility = ps.getBool("visibility");
     v.filter = ps.getBool("filter");
@@ -180,7 +181,7 @@ const TechniqueRegistrar registrar{{
                {intParam("vpls", 480, 1, 1 << 22, "light paths; each leaves a VPL on the light and one where it first lands"),
                 stringParam("interleave", "4x4", "interleaving pattern n x m (1x1: plain deferred shading, every VPL at every pixel)", checkPair),
                 enumParam("split", "two_pass", {"one_pass", "two_pass"}, "G-buffer split/gather: texel by texel, or block split then block translation"),
-                stringParam("block", "16x16", "block size p x q of the two-pass split (multiples of n and m)", checkPair),
+                stringParam("block", "16x16", "block size p x q of the two-pass split (multiples of n and m; by default rounded up to them)", checkPair),
                 boolParam("visibility", true, "shadow rays per VPL and texel (SSM); false ignores visibility (SNSM)"),
                 floatParam("clamp", 0.05, 0, 10, "bounce VPLs' geometry term is clamped at 1/(clamp*scene diagonal)^2; 0 = no clamp"),
                 intParam("bias_compensation", 1, 0, 256, "rays per pixel restoring the clamped energy (Kollig-Keller); 0 = off"),
