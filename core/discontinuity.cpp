@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace weft {
 
@@ -29,39 +30,56 @@ std::vector<std::uint8_t> discontinuityBuffer(const GBuffer& g, const Discontinu
 
 namespace {
 
-// One direction of the separable blur: along x (stride 1) or y (stride width).
-void blurPass(const std::vector<float>& src, std::vector<float>& dst, int width, int height, int channels,
+// One direction of the separable blur: along x or along y. C channels of
+// each `stride` floats (C fixed at compile time for the common counts).
+template <int C>
+void blurPass(const float* src, float* dst, int width, int height, int stride, int channels,
               const std::vector<std::uint8_t>& disc, const std::vector<float>& weights, bool alongX) {
     const int radius = int(weights.size()) - 1;
+    const int nc = C > 0 ? C : channels;
     tbb::parallel_for(0, height, [&](int y) {
-        std::vector<float> acc(static_cast<std::size_t>(channels), 0.0f);
+        float acc[64];
+        const int len = alongX ? width : height;
         for (int x = 0; x < width; ++x) {
-            const int len = alongX ? width : height, pos = alongX ? x : y;
-            auto at = [&](int k) { return alongX ? std::size_t(y) * width + k : std::size_t(k) * width + x; };
+            const int pos = alongX ? x : y;
+            const std::size_t base = std::size_t(y) * width + x;
+            const std::ptrdiff_t step = alongX ? 1 : width;  // pixels between neighbours
+            auto at = [&](int k) { return std::size_t(std::ptrdiff_t(base) + (k - pos) * step); };
             float wsum = weights[0];
-            for (int c = 0; c < channels; ++c) acc[std::size_t(c)] = weights[0] * src[at(pos) * channels + c];
+            for (int c = 0; c < nc; ++c) acc[c] = weights[0] * src[base * stride + c];
             auto add = [&](int k, float w) {
                 wsum += w;
-                for (int c = 0; c < channels; ++c) acc[std::size_t(c)] += w * src[at(k) * channels + c];
+                const float* p = src + at(k) * stride;
+                for (int c = 0; c < nc; ++c) acc[c] += w * p[c];
             };
             for (int k = 1; k <= radius && pos + k < len && !disc[at(pos + k - 1)]; ++k) add(pos + k, weights[std::size_t(k)]);
             for (int k = 1; k <= radius && pos - k >= 0 && !disc[at(pos - k)]; ++k) add(pos - k, weights[std::size_t(k)]);
-            for (int c = 0; c < channels; ++c) dst[at(pos) * channels + c] = acc[std::size_t(c)] / wsum;
+            const float inv = 1.0f / wsum;
+            for (int c = 0; c < nc; ++c) dst[base * stride + c] = acc[c] * inv;
         }
     });
 }
 
+template <int C>
+void blurBoth(float* data, float* tmp, int width, int height, int stride, int channels,
+              const std::vector<std::uint8_t>& disc, const std::vector<float>& weights) {
+    blurPass<C>(data, tmp, width, height, stride, channels, disc, weights, true);
+    blurPass<C>(tmp, data, width, height, stride, channels, disc, weights, false);
+}
+
 }  // namespace
 
-void discontinuityBlur(std::vector<float>& data, int width, int height, int channels,
+void discontinuityBlur(float* data, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius) {
-    if (radius <= 0) return;
+    if (radius <= 0 || channels <= 0) return;
+    if (channels > 64) throw std::invalid_argument("discontinuityBlur: at most 64 channels");
     const float sigma = 0.5f * float(radius);
     std::vector<float> weights(std::size_t(radius) + 1);
     for (int k = 0; k <= radius; ++k) weights[std::size_t(k)] = std::exp(-0.5f * float(k * k) / (sigma * sigma));
-    std::vector<float> tmp(data.size());
-    blurPass(data, tmp, width, height, channels, discontinuity, weights, true);
-    blurPass(tmp, data, width, height, channels, discontinuity, weights, false);
+    std::vector<float> tmp(std::size_t(width) * height * stride);
+    if (channels == 6) blurBoth<6>(data, tmp.data(), width, height, stride, channels, discontinuity, weights);
+    else if (channels == 12) blurBoth<12>(data, tmp.data(), width, height, stride, channels, discontinuity, weights);
+    else blurBoth<0>(data, tmp.data(), width, height, stride, channels, discontinuity, weights);
 }
 
 }  // namespace weft

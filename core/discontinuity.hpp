@@ -27,8 +27,13 @@ bool similarTexels(const GTexel& a, const GTexel& b, const DiscontinuityThreshol
 // 1 where the pixel is on a discontinuity, else 0.
 std::vector<std::uint8_t> discontinuityBuffer(const GBuffer& g, const DiscontinuityThresholds& t);
 
-// Blurs `channels` floats per pixel in place; kernel size 2*radius+1, sigma = radius / 2 (radius 0: no-op).
-void discontinuityBlur(std::vector<float>& data, int width, int height, int channels,
+// Blurs the first `channels` of every `stride` floats per pixel in place;
+// kernel size 2*radius+1, sigma = radius / 2 (radius 0: no-op).
+void discontinuityBlur(float* data, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius);
+inline void discontinuityBlur(std::vector<float>& data, int width, int height, int channels,
+                              const std::vector<std::uint8_t>& discontinuity, int radius) {
+    discontinuityBlur(data.data(), width, height, channels, channels, discontinuity, radius);
+}
 
 }  // namespace weft

@@ -22,6 +22,19 @@ struct GTexel {
     bool background() const { return material < 0; }
 };
 
+// What the shading passes read of a texel, 32 bytes: the split moves these,
+// not the whole texel.
+struct ShadeTexel {
+    Vec3f position{0, 0, 0};
+    Vec3f normal{0, 0, 0};
+    std::int32_t material = -1;
+    float pad = 0;
+
+    ShadeTexel() = default;
+    ShadeTexel(const GTexel& t) : position(t.position), normal(t.normal), material(t.material) {}
+    bool background() const { return material < 0; }
+};
+
 struct GBuffer {
     int width = 0, height = 0;
     std::vector<GTexel> texels;

@@ -51,11 +51,18 @@ private:
     std::vector<int> x0_, y0_;
 };
 
-template <class T>
-void splitOnePass(const std::vector<T>& src, std::vector<T>& dst, const SubBufferLayout& L) {
+// Keeps a texel as it is; splits may instead convert texels on the way (to
+// move only what the next pass reads).
+struct KeepTexel {
+    template <class T>
+    const T& operator()(const T& t) const { return t; }
+};
+
+template <class S, class T, class Convert = KeepTexel>
+void splitOnePass(const std::vector<S>& src, std::vector<T>& dst, const SubBufferLayout& L, Convert convert = {}) {
     dst.resize(src.size());
     tbb::parallel_for(0, L.height(), [&](int y) {
-        for (int x = 0; x < L.width(); ++x) dst[L.splitOffset(x, y)] = src[std::size_t(y) * L.width() + x];
+        for (int x = 0; x < L.width(); ++x) dst[L.splitOffset(x, y)] = convert(src[std::size_t(y) * L.width() + x]);
     });
 }
 
@@ -80,9 +87,9 @@ void forEachBlock(const SubBufferLayout& L, int p, int q, Fn fn) {
 }
 
 // Pass 1 (block splitting) or its inverse: swizzle inside one block.
-template <class T>
-void swizzleBlock(const std::vector<T>& src, std::vector<T>& dst, const SubBufferLayout& L, int bx, int by, int bw,
-                  int bh, bool inverse) {
+template <class S, class T, class Convert>
+void swizzleBlock(const std::vector<S>& src, std::vector<T>& dst, const SubBufferLayout& L, int bx, int by, int bw,
+                  int bh, bool inverse, Convert convert) {
     const std::vector<int> sx = SubBufferLayout::origins(bw, L.n()), sy = SubBufferLayout::origins(bh, L.m());
     for (int ly = 0; ly < bh; ++ly) {
         const std::size_t toRow = std::size_t(by + sy[std::size_t(ly % L.m())] + ly / L.m()) * L.width();
@@ -90,8 +97,8 @@ void swizzleBlock(const std::vector<T>& src, std::vector<T>& dst, const SubBuffe
         for (int lx = 0; lx < bw; ++lx) {
             const std::size_t plain = fromRow + std::size_t(bx + lx);
             const std::size_t split = toRow + std::size_t(bx + sx[std::size_t(lx % L.n())] + lx / L.n());
-            if (inverse) dst[plain] = src[split];
-            else dst[split] = src[plain];
+            if (inverse) dst[plain] = convert(src[split]);
+            else dst[split] = convert(src[plain]);
         }
     }
 }
@@ -116,10 +123,11 @@ void translateBlock(const std::vector<T>& src, std::vector<T>& dst, const SubBuf
 }  // namespace detail
 
 // p x q blocks; `scratch` holds the intermediate block-split buffer.
-template <class T>
-void splitTwoPass(const std::vector<T>& src, std::vector<T>& dst, std::vector<T>& scratch, const SubBufferLayout& L, int p, int q) {
+template <class S, class T, class Convert = KeepTexel>
+void splitTwoPass(const std::vector<S>& src, std::vector<T>& dst, std::vector<T>& scratch, const SubBufferLayout& L, int p,
+                  int q, Convert convert = {}) {
     scratch.resize(src.size()), dst.resize(src.size());
-    detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::swizzleBlock(src, scratch, L, bx, by, bw, bh, false); });
+    detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::swizzleBlock(src, scratch, L, bx, by, bw, bh, false, convert); });
     detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::translateBlock(scratch, dst, L, bx, by, bw, bh, false); });
 }
 
@@ -127,7 +135,7 @@ template <class T>
 void gatherTwoPass(const std::vector<T>& src, std::vector<T>& dst, std::vector<T>& scratch, const SubBufferLayout& L, int p, int q) {
     scratch.resize(src.size()), dst.resize(src.size());
     detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::translateBlock(src, scratch, L, bx, by, bw, bh, true); });
-    detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::swizzleBlock(scratch, dst, L, bx, by, bw, bh, true); });
+    detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::swizzleBlock(scratch, dst, L, bx, by, bw, bh, true, KeepTexel{}); });
 }
 
 }  // namespace weft

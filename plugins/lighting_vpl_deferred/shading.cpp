@@ -32,7 +32,7 @@ struct TaskCounts {
     std::int64_t fragments = 0, rays = 0;
 };
 
-void shadeTask(const Scene& scene, const std::vector<GTexel>& split, const SubBufferLayout& L, const ShadeTask& task,
+void shadeTask(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& L, const ShadeTask& task,
                const std::vector<const Vpl*>& subset, float subsetPaths, const std::vector<Brdf>& brdfs,
                const ShadeConfig& cfg, std::vector<LightTexel>& out, TaskCounts& counts) {
     const int i = task.subBuffer % L.n(), j = task.subBuffer / L.n();
@@ -50,7 +50,7 @@ void shadeTask(const Scene& scene, const std::vector<GTexel>& split, const SubBu
         rays.clear(), lit.clear();
         const Vec3f origin = vpl->position + vpl->normal * cfg.eps;
         for (std::uint32_t k = 0; k < texels.size(); ++k) {
-            const GTexel& t = split[texels[k]];
+            const ShadeTexel& t = split[texels[k]];
             if (!shadeWithVpl(*vpl, t, cfg.eye, brdfs, cfg.gmax, shading[k])) continue;
             lit.push_back(k);
             if (!cfg.visibility) continue;
@@ -81,7 +81,7 @@ void shadeTask(const Scene& scene, const std::vector<GTexel>& split, const SubBu
 
 }  // namespace
 
-std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<GTexel>& split, const SubBufferLayout& L,
+std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& L,
                                         const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
                                         Counters& counters) {
     const int S = L.count();

@@ -14,11 +14,14 @@
 
 namespace weft {
 
-// Per pixel light before the albedos are applied (blurred as a whole).
+// Per pixel light before the albedos are applied (blurred as a whole). The
+// diffuse factors come first, so scenes without glossy materials blur only
+// the first kDiffuseChannels floats.
 struct LightTexel {
-    Vec3f directD{0, 0, 0}, directS{0, 0, 0}, indirectD{0, 0, 0}, indirectS{0, 0, 0};
+    Vec3f directD{0, 0, 0}, indirectD{0, 0, 0}, directS{0, 0, 0}, indirectS{0, 0, 0};
 };
 constexpr int kLightChannels = 12;
+constexpr int kDiffuseChannels = 6;
 static_assert(sizeof(LightTexel) == kLightChannels * sizeof(float));
 
 struct ShadeConfig {
@@ -28,8 +31,8 @@ struct ShadeConfig {
     Vec3f eye;
 };
 
-// `split` is the G-buffer in the layout's split order (the plain G-buffer for 1 x 1).
-std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<GTexel>& split, const SubBufferLayout& layout,
+// `split` is the G-buffer's shading inputs in the layout's split order (plain order for 1 x 1).
+std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& layout,
                                         const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
                                         Counters& counters);
 

@@ -107,7 +107,7 @@ VplSet generateVpls(const Scene& scene, std::uint32_t paths, std::uint64_t seed)
     return set;
 }
 
-bool shadeWithVpl(const Vpl& vpl, const GTexel& t, const Vec3f& eye, const std::vector<Brdf>& brdfs, float gmax, VplShading& out) {
+bool shadeWithVpl(const Vpl& vpl, const ShadeTexel& t, const Vec3f& eye, const std::vector<Brdf>& brdfs, float gmax, VplShading& out) {
     Vec3f to = vpl.position - t.position;
     const float d2 = to.lengthSqr();
     if (!(d2 > 0)) return false;

@@ -42,6 +42,6 @@ struct VplShading {
     Vec3f toLight;  // unit, from the texel to the VPL
     float distance;
 };
-bool shadeWithVpl(const Vpl& vpl, const GTexel& texel, const Vec3f& eye, const std::vector<Brdf>& brdfs, float gmax, VplShading& out);
+bool shadeWithVpl(const Vpl& vpl, const ShadeTexel& texel, const Vec3f& eye, const std::vector<Brdf>& brdfs, float gmax, VplShading& out);
 
 }  // namespace weft

@@ -100,16 +100,18 @@ public:
 
         const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
         const bool interleaved = layout.count() > 1;
-        std::vector<GTexel> split, scratchG;
-        if (interleaved) {
-            ScopedTimer t(ctx.timings, "BS.split");
-            if (p_.twoPass) splitTwoPass(g.texels, split, scratchG, layout, p_.p, p_.q);
-            else splitOnePass(g.texels, split, layout);
+        std::vector<ShadeTexel> split, scratchG;
+        {
+            ScopedTimer t(ctx.timings, interleaved ? "BS.split" : "BS.pack");
+            auto pack = [](const GTexel& t) { return ShadeTexel(t); };
+            if (!interleaved) split.assign(g.texels.begin(), g.texels.end());
+            else if (p_.twoPass) splitTwoPass(g.texels, split, scratchG, layout, p_.p, p_.q, pack);
+            else splitOnePass(g.texels, split, layout, pack);
         }
         std::vector<LightTexel> light;
         {
             ScopedTimer t(ctx.timings, p_.visibility ? "SSM.shade" : "SNSM.shade");
-            light = shadeSubBuffers(scene, interleaved ? split : g.texels, layout, vpls, brdfs, cfg, ctx.counters);
+            light = shadeSubBuffers(scene, split, layout, vpls, brdfs, cfg, ctx.counters);
         }
         if (interleaved) {
             ScopedTimer t(ctx.timings, "BG.gather");
@@ -126,9 +128,10 @@ public:
         { ScopedTimer t(ctx.timings, "DB.discontinuity"); disc = discontinuityBuffer(g, p_.thresholds); }
         if (p_.filter && interleaved) {
             ScopedTimer t(ctx.timings, "B.blur");
-            std::vector<float> flat(reinterpret_cast<const float*>(light.data()), reinterpret_cast<const float*>(light.data() + light.size()));
-            discontinuityBlur(flat, s.width, s.height, kLightChannels, disc, p_.radius);
-            std::copy(flat.begin(), flat.end(), reinterpret_cast<float*>(light.data()));
+            bool glossy = false;
+            for (const Brdf& b : brdfs) glossy |= b.glossy();
+            discontinuityBlur(reinterpret_cast<float*>(light.data()), s.width, s.height, kLightChannels,
+                              glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
         }
         ScopedTimer t(ctx.timings, "C.compose");
         return compose(scene, g, light, disc, layout, brdfs, cfg, ctx.counters);
@@ -180,7 +183,7 @@ const TechniqueRegistrar registrar{{
     ParamTable("lighting.vpl_deferred",
                {intParam("vpls", 480, 1, 1 << 22, "light paths; each leaves a VPL on the light and one where it first lands"),
                 stringParam("interleave", "4x4", "interleaving pattern n x m (1x1: plain deferred shading, every VPL at every pixel)", checkPair),
-                enumParam("split", "two_pass", {"one_pass", "two_pass"}, "G-buffer split/gather: texel by texel, or block split then block translation"),
+                enumParam("split", "one_pass", {"one_pass", "two_pass"}, "G-buffer split/gather: texel by texel (fastest on CPUs), or block split then block translation"),
                 stringParam("block", "16x16", "block size p x q of the two-pass split (multiples of n and m; by default rounded up to them)", checkPair),
                 boolParam("visibility", true, "shadow rays per VPL and texel (SSM); false ignores visibility (SNSM)"),
                 floatParam("clamp", 0.05, 0, 10, "bounce VPLs' geometry term is clamped at 1/(clamp*scene diagonal)^2; 0 = no clamp"),
