@@ -62,7 +62,8 @@ VplParams readParams(const ParamSet& ps) {
     v.filter = ps.getBool("filter");
     v.clampFraction = float(ps.getFloat("clamp"));
     v.compensation = int(ps.getInt("bias_compensation"));
-    v.radius = int(ps.getInt("kernel")) / 2;
+    const int kernel = int(ps.getInt("kernel"));
+    v.radius = kernel > 0 ? kernel / 2 : std::max(v.n, v.m);  // auto: sigma of half a pattern period
     v.thresholds.normalCos = float(std::cos(ps.getFloat("normal_threshold") * M_PI / 180.0));
     v.thresholds.position = float(ps.getFloat("position_threshold"));
     if (v.twoPass && (v.p % v.n || v.q % v.m))
@@ -189,7 +190,7 @@ const TechniqueRegistrar registrar{{
                 floatParam("clamp", 0.05, 0, 10, "bounce VPLs' geometry term is clamped at 1/(clamp*scene diagonal)^2; 0 = no clamp"),
                 intParam("bias_compensation", 1, 0, 256, "rays per pixel restoring the clamped energy (Kollig-Keller); 0 = off"),
                 boolParam("filter", true, "discontinuity-aware Gaussian blur of the gathered light (interleaved patterns only)"),
-                intParam("kernel", 5, 1, 63, "Gaussian kernel size in pixels (odd; sigma = radius / 2)"),
+                intParam("kernel", 0, 0, 63, "Gaussian kernel size in pixels (sigma = radius / 2); 0: 2 max(n, m) + 1, wide enough to hide the pattern"),
                 floatParam("normal_threshold", 25, 0, 180, "discontinuity where neighbours' normals differ by more than this (degrees)"),
                 floatParam("position_threshold", 0.05, 0, 1e6, "discontinuity where neighbours are farther apart than this times their depth")}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<VplDeferred>(scene, p); },
