@@ -79,6 +79,9 @@ public:
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
+        if (s.spp != 1)
+            throw Error("lighting.vpl_deferred shades one G-buffer sample per pixel (spp " + std::to_string(s.spp) +
+                        " given); raise 'vpls' for quality, or average frames rendered with different seeds");
         std::vector<Brdf> brdfs;
         for (const Material& m : scene.materials) brdfs.push_back(Brdf::of(m));
         ShadeConfig cfg;
