@@ -218,12 +218,14 @@ def main():
         sys.exit("bench: data folder %s not found (use --data, or --scenes cornell)" % a.data)
     scenes = {k: v for k, v in write_scenes(a.data, a.out).items() if k in wanted}
     tables = a.tables.split(",")
+    print("load average at start: %.2f %.2f %.2f (%d cores)" % (os.getloadavg() + (os.cpu_count(),)))
     if "3" in tables:
         table3(scenes, a.out, a.res, a.threads, a.repeat)
     if "4" in tables:
         table4(scenes, a.out, a.threads)
     if "5" in tables:
         table5(scenes, a.out, a.threads, a.t5_res, a.t5_ref_spp, a.t5_paths, a.t5_max_frames)
+    print("load average at end: %.2f %.2f %.2f" % os.getloadavg())
 
 
 if __name__ == "__main__":

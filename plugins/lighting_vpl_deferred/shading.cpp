@@ -133,6 +133,7 @@ void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const B
 void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
                         int samples, std::uint64_t seed, std::vector<LightTexel>& light, Counters& counters) {
     const MeshAccel& accel = scene.accel();
+    const float reach = 1.0f / std::sqrt(cfg.gmax);
     tbb::parallel_for(0, g.height, [&](int y) {
         enableFastFloatMode();
         std::int64_t rays = 0;
@@ -148,7 +149,8 @@ void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<
                 const float cosX = t.normal.dot(wi), pdf = fx.pdf(wo, wi, t.normal);
                 if (cosX <= 0 || !(pdf > 0)) continue;
                 ++rays;
-                const SurfaceHit hit = accel.intersect(t.position + t.normal * cfg.eps, wi, 0.0f, std::numeric_limits<float>::infinity());
+                // G = cosX cosY / d^2 <= 1 / d^2 exceeds gmax only closer than 1 / sqrt(gmax): farther hits add nothing.
+                const SurfaceHit hit = accel.intersect(t.position + t.normal * cfg.eps, wi, 0.0f, reach);
                 if (!hit.valid()) continue;
                 const float cosY = std::abs(hit.normal.dot(wi));
                 const float G = cosX * cosY / (hit.t * hit.t);
