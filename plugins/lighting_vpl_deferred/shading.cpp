@@ -13,17 +13,21 @@ namespace weft {
 
 namespace {
 
-// A run of rows of one sub-buffer: the unit of parallel work.
+// A square tile of one sub-buffer: the unit of parallel work. Square tiles
+// keep the shadow rays from one VPL close together (coherent traversal).
 struct ShadeTask {
-    int subBuffer, row0, row1;
+    int subBuffer, x0, y0, x1, y1;  // texel rectangle inside the sub-buffer
 };
+
+constexpr int kShadeTile = 32;
 
 std::vector<ShadeTask> shadeTasks(const SubBufferLayout& L) {
     std::vector<ShadeTask> tasks;
     for (int s = 0; s < L.count(); ++s) {
-        const int w = std::max(1, L.subWidth(s % L.n())), h = L.subHeight(s / L.n());
-        const int rows = std::max(1, 2048 / w);
-        for (int r = 0; r < h; r += rows) tasks.push_back({s, r, std::min(h, r + rows)});
+        const int w = L.subWidth(s % L.n()), h = L.subHeight(s / L.n());
+        for (int y = 0; y < h; y += kShadeTile)
+            for (int x = 0; x < w; x += kShadeTile)
+                tasks.push_back({s, x, y, std::min(w, x + kShadeTile), std::min(h, y + kShadeTile)});
     }
     return tasks;
 }
@@ -37,8 +41,8 @@ void shadeTask(const Scene& scene, const std::vector<ShadeTexel>& split, const S
                const ShadeConfig& cfg, std::vector<LightTexel>& out, TaskCounts& counts) {
     const int i = task.subBuffer % L.n(), j = task.subBuffer / L.n();
     std::vector<std::size_t> texels;
-    for (int r = task.row0; r < task.row1; ++r)
-        for (int x = 0; x < L.subWidth(i); ++x) {
+    for (int r = task.y0; r < task.y1; ++r)
+        for (int x = task.x0; x < task.x1; ++x) {
             const std::size_t o = std::size_t(L.y0(j) + r) * L.width() + std::size_t(L.x0(i) + x);
             if (!split[o].background()) texels.push_back(o);
         }

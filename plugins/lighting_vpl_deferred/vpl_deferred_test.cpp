@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "tests/support/mesh_fixtures.hpp"
 #include "tests/support/render_helpers.hpp"
+#include "tests/support/test_support.hpp"
 
 using namespace weft;
 
@@ -85,6 +86,27 @@ TEST(VplDeferred, ConvergesToThePathTracersOneBounce) {
     for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(test::channelMean(last, c), test::channelMean(reference, c), 0.01 * test::channelMean(reference, c));
     EXPECT_GT(test::channelMean(last, 0), 0.1);
+}
+
+TEST(VplDeferred, PointAndDirectionalLightsAgreeWithThePathTracer) {
+    // A subdivided torus lit by a directional and a point light: direct light
+    // is exact per pixel, bounce VPLs start from both lights.
+    test::TempDir dir;
+    test::writeText(dir / "torus.json", R"({"meshes": [{"file": ")" + std::string(WEFT_SOURCE_DIR) +
+                                            R"(/data/catmark_torus_creases0.obj", "subdivision": 2}],
+        "lights": [{"type": "directional", "direction": [0.3, -0.6, -1], "intensity": 2},
+                   {"type": "point", "position": [0, 2, 2], "intensity": 3}],
+        "camera": {"eye": [0, 2.5, 3], "target": [0, 0, 0], "fov": 40}})");
+    RenderRequest r;
+    r.input = (dir / "torus.json").string(), r.resolution = "24x24", r.technique = "mesh.pathtrace";
+    r.sets = {"max_depth=2", "jitter=false"}, r.spp = 512, r.seed = 3;
+    const Image reference = renderToImage(r).image;
+    r.technique = "lighting.vpl_deferred", r.sets = {"interleave=1x1", "vpls=2048"}, r.spp.reset();
+    const Image img = renderToImage(r).image;
+    EXPECT_LT(relativeRms(img, reference), 0.02);
+    const double indirect = test::channelMean(img, img.channelIndex("indirect.G"));
+    EXPECT_GT(indirect, 1e-4);  // the bounce VPLs do light it
+    EXPECT_NEAR(test::channelMean(img, 1), test::channelMean(reference, 1), 0.01 * test::channelMean(reference, 1));
 }
 
 TEST(VplDeferred, ClampCompensationKeepsTheMean) {
