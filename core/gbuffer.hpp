@@ -1,7 +1,7 @@
 #pragma once
 // G-buffer: what deferred shading needs of the first surface behind every
-// pixel (one ray through the pixel centre), created with Embree ray streams,
-// one coherent stream per image row.
+// pixel (one ray through the pixel centre), created with Embree ray packets,
+// one coherent 16-ray packet per 4x4 pixel tile.
 #include <cstdint>
 #include <vector>
 

@@ -84,6 +84,13 @@ void MeshAccel::occludedStream(RTCRay* rays, unsigned count, bool coherent) cons
     rtcOccluded1M(scene_, &ctx, rays, count, sizeof(RTCRay));
 }
 
+void MeshAccel::intersectPacket(const int* valid, RTCRayHit16& rays) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect16(valid, scene_, &ctx, &rays);
+}
+
 Vec3f MeshAccel::normal(std::uint32_t geom, std::uint32_t prim) const {
     const TriangleMesh& m = meshes_[geom];
     const Vec3f& a = m.positions[m.indices[3 * prim]];

@@ -40,6 +40,8 @@ public:
     // hit.geomID, ray.tfar = -inf when occluded).
     void intersectStream(RTCRayHit* rays, unsigned count, bool coherent) const;
     void occludedStream(RTCRay* rays, unsigned count, bool coherent) const;
+    // A 16-ray packet (valid[i] = -1 for active lanes), for coherent rays such as a 4x4 pixel tile.
+    void intersectPacket(const int* valid, RTCRayHit16& rays) const;
 
     // Unit geometric normal of a triangle (winding side).
     Vec3f normal(std::uint32_t geom, std::uint32_t prim) const;
