@@ -191,3 +191,19 @@ TEST(VplDeferred, BadParametersAreClearErrors) {
     EXPECT_NE(message({"interleave=4"}).find("interleave"), std::string::npos);
     EXPECT_NE(message({"interleave=8x6", "vpls=20"}).find("without VPLs"), std::string::npos);
 }
+
+TEST(VplDeferred, ExtremeSettingsStayFinite) {
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {"1x1", {"interleave=1x1", "vpls=1", "clamp=0"}},                    // one path, unclamped singularities
+        {"3x2", {"interleave=64x64", "vpls=4096", "kernel=63"}},            // pattern far larger than the image
+        {"17x9", {"interleave=5x3", "vpls=15", "clamp=10", "bias_compensation=2"}},  // clamp everything, compensate it all
+        {"16x16", {"interleave=2x2", "normal_threshold=0", "position_threshold=0"}},  // every pixel a discontinuity
+    };
+    for (const auto& [res, sets] : cases) {
+        const RenderOutcome out = vpl(res, sets);
+        EXPECT_EQ(out.counters.count("image.nonfinite"), 0u) << res;  // the host would have scrubbed them
+        double sum = 0;
+        for (float v : out.image.data()) sum += v;
+        EXPECT_GT(sum, 0.0) << res;
+    }
+}
