@@ -2,6 +2,8 @@
 // Point and directional lights seen from a surface point: the direction to
 // the light, how far it is, and the irradiance it brings on a surface facing
 // it. Shared by the mesh techniques so they light scenes identically.
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>

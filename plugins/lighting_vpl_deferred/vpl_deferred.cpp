@@ -84,13 +84,7 @@ public:
                         " given); raise 'vpls' for quality, or average frames rendered with different seeds");
         std::vector<Brdf> brdfs;
         for (const Material& m : scene.materials) brdfs.push_back(Brdf::of(m));
-        ShadeConfig cfg;
-        cfg.visibility = p_.visibility, cfg.eps = rayEpsilon(scene);
-        const Vec3d eye = scene.camera.eye;
-        cfg.eye = Vec3f(float(eye.x()), float(eye.y()), float(eye.z()));
-        const float diag = float(scene.worldBox().extents().length());
-        const float clampDistance = p_.clampFraction * diag;
-        cfg.gmax = p_.clampFraction > 0 ? 1.0f / (clampDistance * clampDistance) : std::numeric_limits<float>::infinity();
+        const ShadeConfig cfg = shadeConfig(scene);
         { ScopedTimer t(ctx.timings, "build_bvh"); scene.accel(); scene.emitters(); }
 
         VplSet vpls;
@@ -103,45 +97,67 @@ public:
         ctx.counters.add("fragments.gbuffer", std::int64_t(g.texels.size()));
 
         const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
-        const bool interleaved = layout.count() > 1;
-        std::vector<ShadeTexel> split, scratchG;
-        {
-            ScopedTimer t(ctx.timings, interleaved ? "BS.split" : "BS.pack");
-            auto pack = [](const GTexel& t) { return ShadeTexel(t); };
-            if (!interleaved) split.assign(g.texels.begin(), g.texels.end());
-            else if (p_.twoPass) splitTwoPass(g.texels, split, scratchG, layout, p_.p, p_.q, pack);
-            else splitOnePass(g.texels, split, layout, pack);
-        }
+        const std::vector<ShadeTexel> split = splitPass(g, layout, ctx);
         std::vector<LightTexel> light;
         {
             ScopedTimer t(ctx.timings, p_.visibility ? "SSM.shade" : "SNSM.shade");
             light = shadeSubBuffers(scene, split, layout, vpls, brdfs, cfg, ctx.counters);
         }
-        if (interleaved) {
-            ScopedTimer t(ctx.timings, "BG.gather");
-            std::vector<LightTexel> gathered, scratchL;
-            if (p_.twoPass) gatherTwoPass(light, gathered, scratchL, layout, p_.p, p_.q);
-            else gatherOnePass(light, gathered, layout);
-            light = std::move(gathered);
-        }
+        gatherPass(light, layout, ctx);
         if (p_.compensation > 0 && std::isfinite(cfg.gmax)) {
             ScopedTimer t(ctx.timings, "KK.bias_compensation");
             compensateClamping(scene, g, brdfs, cfg, p_.compensation, s.seed, light, ctx.counters);
         }
         std::vector<std::uint8_t> disc;
         { ScopedTimer t(ctx.timings, "DB.discontinuity"); disc = discontinuityBuffer(g, p_.thresholds); }
-        if (p_.filter && interleaved) {
-            ScopedTimer t(ctx.timings, "B.blur");
-            bool glossy = false;
-            for (const Brdf& b : brdfs) glossy |= b.glossy();
-            discontinuityBlur(reinterpret_cast<float*>(light.data()), s.width, s.height, kLightChannels,
-                              glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
-        }
+        if (p_.filter && layout.count() > 1) blurPass(light, disc, brdfs, layout, ctx);
         ScopedTimer t(ctx.timings, "C.compose");
         return compose(scene, g, light, disc, layout, brdfs, cfg, ctx.counters);
     }
 
 private:
+    ShadeConfig shadeConfig(const Scene& scene) const {
+        ShadeConfig cfg;
+        cfg.visibility = p_.visibility, cfg.eps = rayEpsilon(scene);
+        const Vec3d eye = scene.camera.eye;
+        cfg.eye = Vec3f(float(eye.x()), float(eye.y()), float(eye.z()));
+        const float clampDistance = p_.clampFraction * float(scene.worldBox().extents().length());
+        cfg.gmax = p_.clampFraction > 0 ? 1.0f / (clampDistance * clampDistance) : std::numeric_limits<float>::infinity();
+        return cfg;
+    }
+
+    // BS: the shading inputs in sub-buffer order (1x1: just packed).
+    std::vector<ShadeTexel> splitPass(const GBuffer& g, const SubBufferLayout& layout, RenderContext& ctx) const {
+        const bool interleaved = layout.count() > 1;
+        ScopedTimer t(ctx.timings, interleaved ? "BS.split" : "BS.pack");
+        std::vector<ShadeTexel> split, scratch;
+        auto pack = [](const GTexel& texel) { return ShadeTexel(texel); };
+        if (!interleaved) split.assign(g.texels.begin(), g.texels.end());
+        else if (p_.twoPass) splitTwoPass(g.texels, split, scratch, layout, p_.p, p_.q, pack);
+        else splitOnePass(g.texels, split, layout, pack);
+        return split;
+    }
+
+    // BG: the light buffer back in image order.
+    void gatherPass(std::vector<LightTexel>& light, const SubBufferLayout& layout, RenderContext& ctx) const {
+        if (layout.count() == 1) return;
+        ScopedTimer t(ctx.timings, "BG.gather");
+        std::vector<LightTexel> gathered, scratch;
+        if (p_.twoPass) gatherTwoPass(light, gathered, scratch, layout, p_.p, p_.q);
+        else gatherOnePass(light, gathered, layout);
+        light = std::move(gathered);
+    }
+
+    // B: discontinuity-aware blur of the light factors (glossy ones only when some material is glossy).
+    void blurPass(std::vector<LightTexel>& light, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
+                  const SubBufferLayout& layout, RenderContext& ctx) const {
+        ScopedTimer t(ctx.timings, "B.blur");
+        bool glossy = false;
+        for (const Brdf& b : brdfs) glossy |= b.glossy();
+        discontinuityBlur(reinterpret_cast<float*>(light.data()), layout.width(), layout.height(), kLightChannels,
+                          glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
+    }
+
     Image compose(const Scene& scene, const GBuffer& g, const std::vector<LightTexel>& light,
                   const std::vector<std::uint8_t>& disc, const SubBufferLayout& layout, const std::vector<Brdf>& brdfs,
                   const ShadeConfig& cfg, Counters& counters) const {

@@ -20,6 +20,7 @@
 //
 // Counters: rays.camera, rays.bounce, rays.shadow.
 #include <algorithm>
+#include <limits>
 
 #include "core/brdf.hpp"
 #include "core/delta_lights.hpp"
