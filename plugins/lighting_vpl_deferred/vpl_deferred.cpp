@@ -49,6 +49,7 @@ struct VplParams {
     float clampFraction;
     int compensation, radius;
     DiscontinuityThresholds thresholds;
+    GlossyModel glossy;
 };
 
 VplParams readParams(const ParamSet& ps) {
@@ -66,6 +67,7 @@ VplParams readParams(const ParamSet& ps) {
     v.radius = kernel > 0 ? kernel / 2 : std::max(v.n, v.m);  // auto: sigma of half a pattern period
     v.thresholds.normalCos = float(std::cos(ps.getFloat("normal_threshold") * M_PI / 180.0));
     v.thresholds.position = float(ps.getFloat("position_threshold"));
+    v.glossy = Brdf::modelNamed(ps.getString("glossy"));
     if (v.twoPass && (v.p % v.n || v.q % v.m))
         throw Error("lighting.vpl_deferred: block=" + ps.getString("block") + " must be a multiple of interleave=" + ps.getString("interleave") + " in each direction");
     if (v.paths < std::uint32_t(v.n * v.m))
@@ -83,7 +85,7 @@ public:
             throw Error("lighting.vpl_deferred shades one G-buffer sample per pixel (spp " + std::to_string(s.spp) +
                         " given); raise 'vpls' for quality, or average frames rendered with different seeds");
         std::vector<Brdf> brdfs;
-        for (const Material& m : scene.materials) brdfs.push_back(Brdf::of(m));
+        for (const Material& m : scene.materials) brdfs.push_back(Brdf::of(m, p_.glossy));
         const ShadeConfig cfg = shadeConfig(scene);
         { ScopedTimer t(ctx.timings, "build_bvh"); scene.accel(); scene.emitters(); }
 
@@ -211,7 +213,8 @@ const TechniqueRegistrar registrar{{
                 boolParam("filter", true, "discontinuity-aware Gaussian blur of the gathered light (interleaved patterns only)"),
                 intParam("kernel", 0, 0, 63, "Gaussian kernel size in pixels (sigma = radius / 2); 0: 2 max(n, m) + 1, wide enough to hide the pattern"),
                 floatParam("normal_threshold", 25, 0, 180, "discontinuity where neighbours' normals differ by more than this (degrees)"),
-                floatParam("position_threshold", 0.05, 0, 1e6, "discontinuity where neighbours are farther apart than this times their depth")}),
+                floatParam("position_threshold", 0.05, 0, 1e6, "discontinuity where neighbours are farther apart than this times their depth"),
+                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<VplDeferred>(scene, p); },
 }};
 

@@ -207,3 +207,44 @@ TEST(VplDeferred, ExtremeSettingsStayFinite) {
         EXPECT_GT(sum, 0.0) << res;
     }
 }
+
+namespace {
+
+// A glossy floor, a diffuse back wall and a small light above, built in code.
+Scene glossyStage() {
+    auto quad = [](Vec3f a, Vec3f b, Vec3f c, Vec3f d, const Material& m) {
+        TriangleMesh q;
+        q.positions = {a, b, c, d};
+        q.indices = {0, 1, 2, 0, 2, 3};
+        q.material = {0, 0};
+        q.materials = {m};
+        return q;
+    };
+    Material floor, wall, light;
+    floor.diffuse = Vec3f(0.3f, 0.3f, 0.3f), floor.glossy = Vec3f(0.5f, 0.5f, 0.5f), floor.exponent = 30;
+    wall.diffuse = Vec3f(0.7f, 0.6f, 0.5f);
+    light.diffuse = Vec3f(0, 0, 0), light.emission = Vec3f(8, 8, 8);
+    Scene scene;
+    scene.source = "glossy stage";
+    scene.addMesh(quad({-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}, floor));           // faces +y
+    scene.addMesh(quad({-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1}, wall));          // faces +z
+    scene.addMesh(quad({-0.2f, 1.2f, -0.4f}, {0.2f, 1.2f, -0.4f}, {0.2f, 1.2f, 0.0f}, {-0.2f, 1.2f, 0.0f}, light));  // faces -y
+    scene.camera.eye = Vec3d(0, 0.9, 2.6), scene.camera.target = Vec3d(0, 0.4, 0);
+    return scene;
+}
+
+}  // namespace
+
+TEST(VplDeferred, GlossyLobesAgreeWithThePathTracer) {
+    const Scene scene = glossyStage();
+    for (const char* model : {"phong", "blinn"}) {
+        const Image reference = test::renderScene(scene, "mesh.pathtrace", {{"max_depth", "2"}, {"jitter", "false"}, {"glossy", model}}, 24, 24, 1024, 5);
+        const Image img = test::renderScene(scene, "lighting.vpl_deferred",
+                                            {{"interleave", "1x1"}, {"vpls", "2048"}, {"glossy", model}, {"bias_compensation", "4"}}, 24, 24, 1);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(test::channelMean(img, c), test::channelMean(reference, c), 0.015 * test::channelMean(reference, c)) << model;
+        const double err = relativeRms(img, reference);
+        std::printf("%s: relative RMS %.4f\n", model, err);
+        EXPECT_LT(err, 0.1) << model;  // glossy highlights keep both estimates noisy per pixel
+    }
+}

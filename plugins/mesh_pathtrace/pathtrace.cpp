@@ -15,6 +15,7 @@
 //   max_depth  surface interactions per path: 1 = direct light only,
 //              2 = plus one indirect bounce (the VPL techniques' one bounce)
 //   rr_depth   vertices before Russian roulette starts
+//   glossy     phong | blinn: the glossy lobe of materials with Ks
 //   jitter     sample positions inside the pixel; false shoots every sample
 //              through the pixel centre, the way G-buffer techniques see it
 //
@@ -41,7 +42,8 @@ struct PathCounts {
 class PathTracer final : public Technique {
 public:
     PathTracer(const Scene& scene, const ParamSet& p)
-        : maxDepth_(int(p.getInt("max_depth"))), rrDepth_(int(p.getInt("rr_depth"))), jitter_(p.getBool("jitter")) {
+        : maxDepth_(int(p.getInt("max_depth"))), rrDepth_(int(p.getInt("rr_depth"))), jitter_(p.getBool("jitter")),
+          model_(Brdf::modelNamed(p.getString("glossy"))) {
         requireMeshLights(scene, "mesh.pathtrace");
     }
 
@@ -118,7 +120,7 @@ private:
             const bool front = hit.normal.dot(wo) > 0;
             if (depth == 1 && front && mat.emissive()) L += mat.emission;
             const Vec3f n = front ? hit.normal : -hit.normal;
-            const Brdf brdf = Brdf::of(mat);
+            const Brdf brdf = Brdf::of(mat, model_);
             const std::uint32_t dim = 2 + kDimsPerVertex * std::uint32_t(depth - 1);
             L += throughput * directLight(scene, accel, p, n, wo, brdf, sampler, dim, counts);
             if (depth == maxDepth_) break;
@@ -140,6 +142,7 @@ private:
     int maxDepth_;
     int rrDepth_;
     bool jitter_;
+    GlossyModel model_;
     float eps_ = 1e-5f;
 };
 
@@ -149,7 +152,8 @@ const TechniqueRegistrar registrar{{
     ParamTable("mesh.pathtrace",
                {intParam("max_depth", 8, 1, 1024, "surface interactions per path: 1 = direct light, 2 = one indirect bounce"),
                 intParam("rr_depth", 3, 1, 1024, "path vertices before Russian roulette may end a path"),
-                boolParam("jitter", true, "random positions inside each pixel (antialiasing); false: pixel centres, as a G-buffer sees them")}),
+                boolParam("jitter", true, "random positions inside each pixel (antialiasing); false: pixel centres, as a G-buffer sees them"),
+                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<PathTracer>(scene, p); },
 }};
 
