@@ -24,6 +24,12 @@ find_package(embree 3 CONFIG REQUIRED)
 find_library(OSD_CPU osdCPU REQUIRED)
 find_path(OSD_INCLUDE_DIR opensubdiv/far/topologyRefiner.h REQUIRED)
 
+# Mesh files: OBJ/MTL through tinyobjloader (keeps the file's vertex indices
+# and `t crease` tags for subdivision), PLY through Assimp. Assimp's CMake
+# config drags in static librt.a and draco; pkg-config links just libassimp.
+find_package(tinyobjloader CONFIG REQUIRED)
+pkg_check_modules(ASSIMP REQUIRED IMPORTED_TARGET assimp)
+
 find_package(CLI11 CONFIG REQUIRED)
 # gzip-compressed raw volumes (weft convert).
 find_package(Boost REQUIRED COMPONENTS iostreams)

@@ -4,11 +4,13 @@
 // override. Only what the scene uses is built.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/camera.hpp"
+#include "core/mesh.hpp"
 #include "core/volume.hpp"
 
 namespace weft {
@@ -30,17 +32,33 @@ struct SceneRenderSettings {
     std::optional<std::uint64_t> seed;
 };
 
+class MeshAccel;
+class Emitters;
+struct MeshCache;
+
 struct Scene {
     std::string source;  // what was loaded: a path or builtin:NAME
     Camera camera;
     std::vector<Volume> volumes;
+    std::vector<TriangleMesh> meshes;  // material ids index `materials`
+    std::vector<Material> materials;
     std::vector<Light> lights;
     SceneRenderSettings render;
 
     BBoxd worldBox() const;
+    // Adds a mesh, moving its materials into the scene's table.
+    void addMesh(TriangleMesh mesh);
+    // The Embree BVH over every mesh and the emissive triangles, built on the
+    // first call (thread-safe). Meshes must not change after that.
+    const MeshAccel& accel() const;
+    const Emitters& emitters() const;
+
+private:
+    mutable std::shared_ptr<MeshCache> meshCache_;
 };
 
-// Loads a scene from a .json file, a bare .vdb (framed like vdb_render does,
+// Loads a scene from a .json file, a bare .obj/.ply mesh (framed like a bare
+// .vdb, lit by its emissive materials or else by a light over the camera), a bare .vdb (framed like vdb_render does,
 // default transfer function over the grid's value range) or builtin:NAME.
 // aspect is width/height of the image, used to frame scenes without a camera;
 // when not given, a scene file's own resolution decides, else 1.

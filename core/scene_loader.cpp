@@ -142,6 +142,23 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir) {
     return vol;
 }
 
+void readMesh(const ObjectReader& r, const fs::path& baseDir, Scene& scene) {
+    if (!r.has("file")) r.failAt(r.pointer(), "a mesh needs a 'file' (.obj or .ply)");
+    fs::path file = r.string("file", "");
+    if (file.is_relative()) file = baseDir / file;
+    const int level = int(r.number("subdivision", 0, 0, 8));
+    if (r.has("subdivision") && !r.value()["subdivision"].is_number_integer()) r.fail("subdivision", "mesh.subdivision must be an integer level in [0, 8]");
+    const double scale = r.number("scale", 1.0, 1e-12, kHuge);
+    const Vec3d translate = r.vec3("translate", Vec3d(0, 0, 0));
+    try {
+        PolyMesh poly = readPolyMesh(file.string());
+        transformMesh(poly, scale, translate);
+        scene.addMesh(subdivide(poly, level, file.string()));
+    } catch (const Error& e) {
+        r.fail("file", e.what());
+    }
+}
+
 Light readLight(const ObjectReader& r) {
     Light light;
     const std::string type = r.string("type", "directional");
@@ -198,7 +215,7 @@ void forEachInArray(const JsonDoc& doc, const std::string& pointer, const std::s
 
 Scene loadJsonScene(const std::string& path, std::optional<double> aspect) {
     const JsonDoc doc = JsonDoc::load(path);
-    ObjectReader top(doc, "", "scene", {"camera", "volumes", "lights", "render"});
+    ObjectReader top(doc, "", "scene", {"camera", "volumes", "meshes", "lights", "render"});
     const fs::path baseDir = fs::path(path).parent_path();
     Scene scene;
     scene.source = path;
@@ -206,13 +223,17 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect) {
         forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
             scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function"}), baseDir));
         });
+    if (top.has("meshes"))
+        forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) {
+            readMesh(ObjectReader(doc, p, "mesh", {"file", "subdivision", "scale", "translate"}), baseDir, scene);
+        });
     if (top.has("lights"))
         forEachInArray(doc, "/lights", "lights", [&](const std::string& p) {
             scene.lights.push_back(readLight(ObjectReader(doc, p, "light", {"type", "direction", "position", "color", "intensity"})));
         });
     if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", {"technique", "resolution", "spp", "seed", "params"}), scene.render);
     if (top.has("camera")) scene.camera = readCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov"}));
-    else if (!scene.volumes.empty()) {
+    else if (!scene.volumes.empty() || !scene.meshes.empty()) {
         const double sceneAspect = scene.render.width ? double(*scene.render.width) / *scene.render.height : 1.0;
         scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect.value_or(sceneAspect));
     }
@@ -243,6 +264,23 @@ Scene loadAnalyticBuiltin(const std::string& name) {
     scene.source = "builtin:" + name;
     scene.render.technique = "analytic.2d";
     scene.render.params["scene"] = name;
+    return scene;
+}
+
+Scene loadBareMesh(const std::string& path, double aspect) {
+    Scene scene;
+    scene.source = path;
+    scene.addMesh(triangulate(readPolyMesh(path), path));
+    scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect);
+    scene.render.technique = "mesh.pathtrace";
+    bool emits = false;
+    for (const Material& m : scene.materials) emits |= m.emissive();
+    if (!emits) {  // a key light from above the camera's left shoulder
+        Light key;
+        key.direction = Vec3d(0.35, -0.6, -1.0).unitSafe();
+        key.intensity = 3.0;
+        scene.lights.push_back(key);
+    }
     return scene;
 }
 
@@ -278,6 +316,7 @@ const char* builtinSceneNames() {
 BBoxd Scene::worldBox() const {
     BBoxd box;
     for (const Volume& v : volumes) box.expand(v.worldBox());
+    for (const TriangleMesh& m : meshes) box.expand(m.bounds());
     return box;
 }
 
@@ -286,11 +325,12 @@ Scene loadScene(const std::string& input, std::optional<double> aspect, const st
     if (input.rfind("builtin:", 0) == 0) return loadBuiltin(input.substr(8), aspect.value_or(1.0));
     const std::string ext = lowerExtension(input);
     if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0), gridName);
+    if (ext == ".obj" || ext == ".ply") return loadBareMesh(input, aspect.value_or(1.0));
     if (ext == ".json") {
         if (!fs::exists(input)) throw Error("scene '" + input + "': no such file");
         return loadJsonScene(input, aspect);
     }
-    throw Error("input '" + input + "': expected a scene .json, a .vdb file or " + builtinSceneNames());
+    throw Error("input '" + input + "': expected a scene .json, a .vdb, .obj or .ply file or " + builtinSceneNames());
 }
 
 }  // namespace weft

@@ -10,6 +10,8 @@ PACKAGES=(
   libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev
   libopenimageio-dev libopenexr-dev libimath-dev libopencolorio-dev
   libembree-dev libosd-dev
+  # mesh files: OBJ/MTL (tinyobjloader), PLY (Assimp)
+  libtinyobjloader-dev libassimp-dev
   # small well-kept libraries
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   # tools: vdb_render/vdb_print, oiiotool/iinfo, ociocheck; python for scripts

@@ -71,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"BadResolution", "builtin:sphere --res 0x10", "bad resolution '0x10'"},
         BadInputCase{"BadResolutionText", "builtin:sphere --res big", "bad resolution 'big'"},
         BadInputCase{"UnknownBuiltin", "builtin:teapot", "unknown built-in scene 'builtin:teapot'"},
-        BadInputCase{"UnknownInputKind", "$D/scene.txt", "expected a scene .json, a .vdb file"},
+        BadInputCase{"UnknownInputKind", "$D/scene.txt", "expected a scene .json, a .vdb, .obj or .ply file"},
         BadInputCase{"UnknownSceneKey", "$D/bad.json", "bad.json:3:3: unknown key 'camra' in scene; valid keys: camera"},
         BadInputCase{"SceneSyntax", "$D/syntax.json", "syntax.json:4:3: JSON syntax error"},
         BadInputCase{"SceneValueRange", "$D/range.json", "range.json:2:56: volume.resolution = 2 is outside [4, 1024]"},

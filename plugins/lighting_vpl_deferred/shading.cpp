@@ -1,0 +1,181 @@
+#include "plugins/lighting_vpl_deferred/shading.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <limits>
+
+#include "core/delta_lights.hpp"
+#include "core/emitters.hpp"
+#include "core/mesh_accel.hpp"
+#include "core/rng.hpp"
+
+namespace weft {
+
+namespace {
+
+// A square tile of one sub-buffer: the unit of parallel work. Square tiles
+// keep the shadow rays from one VPL close together (coherent traversal).
+struct ShadeTask {
+    int subBuffer, x0, y0, x1, y1;  // texel rectangle inside the sub-buffer
+};
+
+constexpr int kShadeTile = 32;
+
+std::vector<ShadeTask> shadeTasks(const SubBufferLayout& L) {
+    std::vector<ShadeTask> tasks;
+    for (int s = 0; s < L.count(); ++s) {
+        const int w = L.subWidth(s % L.n()), h = L.subHeight(s / L.n());
+        for (int y = 0; y < h; y += kShadeTile)
+            for (int x = 0; x < w; x += kShadeTile)
+                tasks.push_back({s, x, y, std::min(w, x + kShadeTile), std::min(h, y + kShadeTile)});
+    }
+    return tasks;
+}
+
+struct TaskCounts {
+    std::int64_t fragments = 0, rays = 0;
+};
+
+void shadeTask(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& L, const ShadeTask& task,
+               const std::vector<const Vpl*>& subset, float subsetPaths, const std::vector<Brdf>& brdfs,
+               const ShadeConfig& cfg, std::vector<LightTexel>& out, TaskCounts& counts) {
+    const int i = task.subBuffer % L.n(), j = task.subBuffer / L.n();
+    std::vector<std::size_t> texels;
+    for (int r = task.y0; r < task.y1; ++r)
+        for (int x = task.x0; x < task.x1; ++x) {
+            const std::size_t o = std::size_t(L.y0(j) + r) * L.width() + std::size_t(L.x0(i) + x);
+            if (!split[o].background()) texels.push_back(o);
+        }
+    std::vector<VplShading> shading(texels.size());
+    std::vector<RTCRay> rays;
+    std::vector<std::uint32_t> lit;
+    const MeshAccel& accel = scene.accel();
+    for (const Vpl* vpl : subset) {
+        rays.clear(), lit.clear();
+        const Vec3f origin = vpl->position + vpl->normal * cfg.eps;
+        for (std::uint32_t k = 0; k < texels.size(); ++k) {
+            const ShadeTexel& t = split[texels[k]];
+            if (!shadeWithVpl(*vpl, t, cfg.eye, brdfs, cfg.gmax, shading[k])) continue;
+            lit.push_back(k);
+            if (!cfg.visibility) continue;
+            rays.emplace_back();
+            // Ends just short of the texel, so texels on an edge are not shadowed by the neighbouring face.
+            setRay(rays.back(), origin, t.position + t.normal * cfg.eps - origin, 0.0f, 1.0f - 1e-4f);
+        }
+        counts.fragments += std::int64_t(texels.size());
+        if (cfg.visibility && !rays.empty()) {
+            accel.occludedStream(rays.data(), unsigned(rays.size()), true);
+            counts.rays += std::int64_t(rays.size());
+        }
+        const bool emitter = vpl->kind == VplKind::Emitter;
+        for (std::size_t r = 0; r < lit.size(); ++r) {
+            if (cfg.visibility && rays[r].tfar < 0) continue;  // occluded: Embree set tfar to -inf
+            const VplShading& sh = shading[lit[r]];
+            LightTexel& o = out[texels[lit[r]]];
+            (emitter ? o.directD : o.indirectD) += sh.d;
+            (emitter ? o.directS : o.indirectS) += sh.s;
+        }
+    }
+    const float scale = 1.0f / subsetPaths;
+    for (std::size_t o : texels) {
+        LightTexel& t = out[o];
+        t.directD *= scale, t.directS *= scale, t.indirectD *= scale, t.indirectS *= scale;
+    }
+}
+
+}  // namespace
+
+std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& L,
+                                        const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
+                                        Counters& counters) {
+    const int S = L.count();
+    std::vector<std::vector<const Vpl*>> subsets(static_cast<std::size_t>(S));
+    for (const Vpl& v : vpls.vpls) subsets[v.path % std::uint32_t(S)].push_back(&v);
+    std::vector<LightTexel> out(split.size());
+    const std::vector<ShadeTask> tasks = shadeTasks(L);
+    tbb::parallel_for(std::size_t(0), tasks.size(), [&](std::size_t k) {
+        enableFastFloatMode();
+        const ShadeTask& task = tasks[k];
+        const float paths = float((vpls.paths - std::uint32_t(task.subBuffer) + std::uint32_t(S) - 1) / std::uint32_t(S));
+        TaskCounts counts;
+        shadeTask(scene, split, L, task, subsets[std::size_t(task.subBuffer)], std::max(1.0f, paths), brdfs, cfg, out, counts);
+        counters.add("fragments.shaded", counts.fragments);
+        counters.add("rays.shadow", counts.rays);
+    });
+    return out;
+}
+
+void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const Brdf& brdf, float eps, const float* u,
+                   bool useEmitters, Vec3f& d, Vec3f& s, std::int64_t& rays) {
+    const MeshAccel& accel = scene.accel();
+    const Vec3f origin = t.position + t.normal * eps;
+    auto add = [&](const Vec3f& wi, const Vec3f& radianceCos) {
+        d += radianceCos * float(1 / M_PI);
+        if (brdf.glossy()) s += radianceCos * brdf.lobe(wo, wi, t.normal);
+    };
+    const Emitters& emitters = scene.emitters();
+    if (useEmitters && !emitters.empty()) {
+        const EmitterSample e = emitters.sample(u[0], u[1], u[2]);
+        Vec3f to = e.position - origin;
+        const float d2 = to.lengthSqr(), dist = std::sqrt(d2);
+        to /= dist;
+        const float cosX = t.normal.dot(to), cosL = -e.normal.dot(to);
+        if (cosX > 0 && cosL > 0) {
+            ++rays;
+            if (!accel.occluded(origin, to, eps, dist * (1.0f - 1e-4f))) add(to, e.radiance * (cosX * cosL / (d2 * e.pdfArea)));
+        }
+    }
+    for (const Light& light : scene.lights) {
+        const DeltaIllumination li = illuminate(light, origin);
+        const float cosX = t.normal.dot(li.wi);
+        if (cosX <= 0) continue;
+        ++rays;
+        if (!accel.occluded(origin, li.wi, eps, li.distance * (1.0f - 1e-4f))) add(li.wi, li.irradiance * cosX);
+    }
+}
+
+void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
+                        int samples, std::uint64_t seed, std::vector<LightTexel>& light, Counters& counters) {
+    const MeshAccel& accel = scene.accel();
+    const float reach = 1.0f / std::sqrt(cfg.gmax);
+    tbb::parallel_for(0, g.height, [&](int y) {
+        enableFastFloatMode();
+        std::int64_t rays = 0;
+        for (int x = 0; x < g.width; ++x) {
+            const GTexel& t = g.at(x, y);
+            if (t.background()) continue;
+            const Brdf& fx = brdfs[std::size_t(t.material)];
+            const Vec3f wo = (cfg.eye - t.position).unitSafe();
+            LightTexel& out = light[std::size_t(y) * g.width + x];
+            for (int i = 0; i < samples; ++i) {
+                auto u = [&](std::uint32_t dim) { return pixelRandom(seed ^ 0x6b6b6b6bull, x, y, std::uint32_t(i), dim); };
+                const Vec3f wi = fx.sample(wo, t.normal, u(0), u(1), u(2));
+                const float cosX = t.normal.dot(wi), pdf = fx.pdf(wo, wi, t.normal);
+                if (cosX <= 0 || !(pdf > 0)) continue;
+                ++rays;
+                // G = cosX cosY / d^2 <= 1 / d^2 exceeds gmax only closer than 1 / sqrt(gmax): farther hits add nothing.
+                const SurfaceHit hit = accel.intersect(t.position + t.normal * cfg.eps, wi, 0.0f, reach);
+                if (!hit.valid()) continue;
+                const float cosY = std::abs(hit.normal.dot(wi));
+                const float G = cosX * cosY / (hit.t * hit.t);
+                if (G <= cfg.gmax) continue;
+                // Light leaving y towards x: its direct light, reflected by its BRDF.
+                GTexel ty;
+                ty.position = t.position + t.normal * cfg.eps + wi * hit.t;
+                ty.normal = hit.normal.dot(wi) < 0 ? hit.normal : -hit.normal;
+                ty.material = std::int32_t(accel.material(hit.geom, hit.prim));
+                const Brdf& fy = brdfs[std::size_t(ty.material)];
+                const float lu[3] = {u(3), u(4), u(5)};
+                Vec3f dY(0, 0, 0), sY(0, 0, 0);
+                directLightAt(scene, ty, -wi, fy, cfg.eps, lu, true, dY, sY, rays);
+                const Vec3f leaving = fy.kd * dY + fy.ks * sY;
+                const Vec3f radiance = leaving * ((1.0f - cfg.gmax / G) * cosX / (pdf * float(samples)));
+                out.indirectD += radiance * float(1 / M_PI);
+                if (fx.glossy()) out.indirectS += radiance * fx.lobe(wo, wi, t.normal);
+            }
+        }
+        counters.add("rays.bias_compensation", rays);
+    });
+}
+
+}  // namespace weft

@@ -1,0 +1,51 @@
+#pragma once
+// The shading passes of interleaved deferred shading: every sub-buffer of
+// the split G-buffer is lit by its own VPL subset (SSM: with an Embree
+// shadow ray per VPL and texel, shot as one coherent stream from the VPL to
+// a run of the sub-buffer's texels; SNSM: visibility ignored), and the
+// Kollig-Keller pass that restores the energy the geometry-term clamp
+// removes.
+#include <cstdint>
+#include <vector>
+
+#include "core/counters.hpp"
+#include "core/interleave.hpp"
+#include "plugins/lighting_vpl_deferred/vpl.hpp"
+
+namespace weft {
+
+// Per pixel light before the albedos are applied (blurred as a whole). The
+// diffuse factors come first, so scenes without glossy materials blur only
+// the first kDiffuseChannels floats.
+struct LightTexel {
+    Vec3f directD{0, 0, 0}, indirectD{0, 0, 0}, directS{0, 0, 0}, indirectS{0, 0, 0};
+};
+constexpr int kLightChannels = 12;
+constexpr int kDiffuseChannels = 6;
+static_assert(sizeof(LightTexel) == kLightChannels * sizeof(float));
+
+struct ShadeConfig {
+    bool visibility = true;
+    float gmax = 0;  // clamp of bounce VPLs' geometry term
+    float eps = 1e-5f;
+    Vec3f eye;
+};
+
+// `split` is the G-buffer's shading inputs in the layout's split order (plain order for 1 x 1).
+std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& layout,
+                                        const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
+                                        Counters& counters);
+
+// Adds the clamped-away part of one-bounce indirect light (Kollig and Keller
+// 2004): a BRDF-sampled ray from each texel; where it lands closer than the
+// clamp allows (G > gmax), the direct light reflected there, weighted by
+// 1 - gmax / G. `samples` rays per pixel.
+void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
+                        int samples, std::uint64_t seed, std::vector<LightTexel>& light, Counters& counters);
+
+// Direct light from a texel's point of view: one emitter sample (if any)
+// plus every point/directional light, with shadow rays; as D and S factors.
+void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const Brdf& brdf, float eps, const float* u,
+                   bool emitters, Vec3f& d, Vec3f& s, std::int64_t& rays);
+
+}  // namespace weft

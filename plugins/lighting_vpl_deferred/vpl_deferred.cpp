@@ -1,0 +1,223 @@
+// lighting.vpl_deferred — non-interleaved deferred shading of interleaved
+// sample patterns (Segovia et al. 2006) with VPLs from instant radiosity.
+//
+// Passes, each timed under its own name and counted:
+//   VG    VPL generation: `vpls` light paths, one bounce (vpl.hpp)
+//   BC    G-buffer creation with Embree ray streams (core/gbuffer)
+//   BS    G-buffer split into n x m sub-buffers (`split`: one_pass | two_pass
+//         with `block` p x q blocks; core/interleave.hpp)
+//   SSM / SNSM  shading of each sub-buffer with its own VPL subset, with
+//         Embree visibility per VPL (`visibility=true`) or without
+//   BG    gathering the light buffer back
+//   KK    Kollig-Keller compensation of the geometry-term clamp (`clamp`,
+//         `bias_compensation` rays per pixel)
+//   DB    discontinuity buffer, B: discontinuity-aware separable Gaussian blur
+//   C     compose: albedos applied after the blur, point/directional lights
+//         (exact, every pixel), emission seen directly
+// `interleave=1x1` skips BS/BG: plain deferred shading, every VPL at every
+// pixel. Each pixel of an n x m pattern sees the VPLs of paths k with
+// k mod (n m) equal to its sub-buffer index.
+//
+// AOVs: direct.RGB, indirect.RGB, albedo.RGB, N.XYZ, Z, discontinuity,
+// subbuffer. Counters: vpl.paths, vpl.emitter, vpl.bounce, rays.*,
+// fragments.gbuffer, fragments.shaded (texel x VPL evaluations).
+#include <cstdio>
+
+#include "core/delta_lights.hpp"
+#include "core/discontinuity.hpp"
+#include "core/interleave.hpp"
+#include "core/mesh_accel.hpp"
+#include "plugins/lighting_vpl_deferred/shading.hpp"
+#include "plugins/technique.hpp"
+
+namespace weft {
+
+namespace {
+
+std::pair<int, int> parsePair(const std::string& text, int maxValue) {
+    int a = 0, b = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || x != 'x' || a < 1 || b < 1 || a > maxValue || b > maxValue)
+        throw Error("expected NxM with N and M in [1, " + std::to_string(maxValue) + "], e.g. 4x4");
+    return {a, b};
+}
+
+struct VplParams {
+    std::uint32_t paths;
+    int n, m, p, q;
+    bool twoPass, visibility, filter;
+    float clampFraction;
+    int compensation, radius;
+    DiscontinuityThresholds thresholds;
+    GlossyModel glossy;
+};
+
+VplParams readParams(const ParamSet& ps) {
+    VplParams v;
+    v.paths = std::uint32_t(ps.getInt("vpls"));
+    std::tie(v.n, v.m) = parsePair(ps.getString("interleave"), 64);
+    std::tie(v.p, v.q) = parsePair(ps.getString("block"), 4096);
+    if (!ps.wasSet("block")) v.p = (v.p + v.n - 1) / v.n * v.n, v.q = (v.q + v.m - 1) / v.m * v.m;  // default: 16x16 rounded up to the pattern
+    v.twoPass = ps.getString("split") == "two_pass";
+    v.visibility = ps.getBool("visibility");
+    v.filter = ps.getBool("filter");
+    v.clampFraction = float(ps.getFloat("clamp"));
+    v.compensation = int(ps.getInt("bias_compensation"));
+    const int kernel = int(ps.getInt("kernel"));
+    v.radius = kernel > 0 ? kernel / 2 : std::max(v.n, v.m);  // auto: sigma of half a pattern period
+    v.thresholds.normalCos = float(std::cos(ps.getFloat("normal_threshold") * M_PI / 180.0));
+    v.thresholds.position = float(ps.getFloat("position_threshold"));
+    v.glossy = Brdf::modelNamed(ps.getString("glossy"));
+    if (v.twoPass && (v.p % v.n || v.q % v.m))
+        throw Error("lighting.vpl_deferred: block=" + ps.getString("block") + " must be a multiple of interleave=" + ps.getString("interleave") + " in each direction");
+    if (v.paths < std::uint32_t(v.n * v.m))
+        throw Error("lighting.vpl_deferred: vpls=" + std::to_string(v.paths) + " leaves some of the " + std::to_string(v.n * v.m) + " sub-buffers without VPLs");
+    return v;
+}
+
+class VplDeferred final : public Technique {
+public:
+    VplDeferred(const Scene& scene, const ParamSet& ps) : p_(readParams(ps)) { requireMeshLights(scene, "lighting.vpl_deferred"); }
+
+    Image render(const Scene& scene, RenderContext& ctx) override {
+        const RenderSettings& s = ctx.settings;
+        if (s.spp != 1)
+            throw Error("lighting.vpl_deferred shades one G-buffer sample per pixel (spp " + std::to_string(s.spp) +
+                        " given); raise 'vpls' for quality, or average frames rendered with different seeds");
+        std::vector<Brdf> brdfs;
+        for (const Material& m : scene.materials) brdfs.push_back(Brdf::of(m, p_.glossy));
+        const ShadeConfig cfg = shadeConfig(scene);
+        { ScopedTimer t(ctx.timings, "build_bvh"); scene.accel(); scene.emitters(); }
+
+        VplSet vpls;
+        { ScopedTimer t(ctx.timings, "VG.vpls"); vpls = generateVpls(scene, p_.paths, s.seed); }
+        ctx.counters.add("vpl.paths", vpls.paths), ctx.counters.add("vpl.emitter", vpls.emitterCount);
+        ctx.counters.add("vpl.bounce", vpls.bounceCount), ctx.counters.add("rays.vpl", vpls.rays);
+
+        GBuffer g;
+        { ScopedTimer t(ctx.timings, "BC.gbuffer"); g = createGBuffer(scene, s, ctx.counters); }
+        ctx.counters.add("fragments.gbuffer", std::int64_t(g.texels.size()));
+
+        const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
+        const std::vector<ShadeTexel> split = splitPass(g, layout, ctx);
+        std::vector<LightTexel> light;
+        {
+            ScopedTimer t(ctx.timings, p_.visibility ? "SSM.shade" : "SNSM.shade");
+            light = shadeSubBuffers(scene, split, layout, vpls, brdfs, cfg, ctx.counters);
+        }
+        gatherPass(light, layout, ctx);
+        if (p_.compensation > 0 && std::isfinite(cfg.gmax)) {
+            ScopedTimer t(ctx.timings, "KK.bias_compensation");
+            compensateClamping(scene, g, brdfs, cfg, p_.compensation, s.seed, light, ctx.counters);
+        }
+        std::vector<std::uint8_t> disc;
+        { ScopedTimer t(ctx.timings, "DB.discontinuity"); disc = discontinuityBuffer(g, p_.thresholds); }
+        if (p_.filter && layout.count() > 1) blurPass(light, disc, brdfs, layout, ctx);
+        ScopedTimer t(ctx.timings, "C.compose");
+        return compose(scene, g, light, disc, layout, brdfs, cfg, ctx.counters);
+    }
+
+private:
+    ShadeConfig shadeConfig(const Scene& scene) const {
+        ShadeConfig cfg;
+        cfg.visibility = p_.visibility, cfg.eps = rayEpsilon(scene);
+        const Vec3d eye = scene.camera.eye;
+        cfg.eye = Vec3f(float(eye.x()), float(eye.y()), float(eye.z()));
+        const float clampDistance = p_.clampFraction * float(scene.worldBox().extents().length());
+        cfg.gmax = p_.clampFraction > 0 ? 1.0f / (clampDistance * clampDistance) : std::numeric_limits<float>::infinity();
+        return cfg;
+    }
+
+    // BS: the shading inputs in sub-buffer order (1x1: just packed).
+    std::vector<ShadeTexel> splitPass(const GBuffer& g, const SubBufferLayout& layout, RenderContext& ctx) const {
+        const bool interleaved = layout.count() > 1;
+        ScopedTimer t(ctx.timings, interleaved ? "BS.split" : "BS.pack");
+        std::vector<ShadeTexel> split, scratch;
+        auto pack = [](const GTexel& texel) { return ShadeTexel(texel); };
+        if (!interleaved) split.assign(g.texels.begin(), g.texels.end());
+        else if (p_.twoPass) splitTwoPass(g.texels, split, scratch, layout, p_.p, p_.q, pack);
+        else splitOnePass(g.texels, split, layout, pack);
+        return split;
+    }
+
+    // BG: the light buffer back in image order.
+    void gatherPass(std::vector<LightTexel>& light, const SubBufferLayout& layout, RenderContext& ctx) const {
+        if (layout.count() == 1) return;
+        ScopedTimer t(ctx.timings, "BG.gather");
+        std::vector<LightTexel> gathered, scratch;
+        if (p_.twoPass) gatherTwoPass(light, gathered, scratch, layout, p_.p, p_.q);
+        else gatherOnePass(light, gathered, layout);
+        light = std::move(gathered);
+    }
+
+    // B: discontinuity-aware blur of the light factors (glossy ones only when some material is glossy).
+    void blurPass(std::vector<LightTexel>& light, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
+                  const SubBufferLayout& layout, RenderContext& ctx) const {
+        ScopedTimer t(ctx.timings, "B.blur");
+        bool glossy = false;
+        for (const Brdf& b : brdfs) glossy |= b.glossy();
+        discontinuityBlur(reinterpret_cast<float*>(light.data()), layout.width(), layout.height(), kLightChannels,
+                          glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
+    }
+
+    Image compose(const Scene& scene, const GBuffer& g, const std::vector<LightTexel>& light,
+                  const std::vector<std::uint8_t>& disc, const SubBufferLayout& layout, const std::vector<Brdf>& brdfs,
+                  const ShadeConfig& cfg, Counters& counters) const {
+        Image img(g.width, g.height, {"R", "G", "B", "A", "direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G",
+                                      "indirect.B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z",
+                                      "discontinuity", "subbuffer"});
+        tbb::parallel_for(0, g.height, [&](int y) {
+            enableFastFloatMode();
+            std::int64_t rays = 0;
+            for (int x = 0; x < g.width; ++x) {
+                const GTexel& t = g.at(x, y);
+                float* px = img.pixel(x, y);
+                const std::size_t i = std::size_t(y) * g.width + x;
+                px[17] = float(disc[i]), px[18] = float(layout.index(x, y));
+                if (t.background()) continue;
+                const Brdf& f = brdfs[std::size_t(t.material)];
+                const LightTexel& l = light[i];
+                Vec3f dd(0, 0, 0), ds(0, 0, 0);
+                if (!scene.lights.empty()) directLightAt(scene, t, (cfg.eye - t.position).unitSafe(), f, cfg.eps, nullptr, false, dd, ds, rays);
+                Vec3f direct = f.kd * (l.directD + dd) + f.ks * (l.directS + ds);
+                const Material& mat = scene.materials[std::size_t(t.material)];
+                if (t.front && mat.emissive()) direct += mat.emission;
+                const Vec3f indirect = f.kd * l.indirectD + f.ks * l.indirectS;
+                const Vec3f rgb = direct + indirect;
+                const float values[17] = {rgb.x(), rgb.y(), rgb.z(), 1.0f, direct.x(), direct.y(), direct.z(),
+                                          indirect.x(), indirect.y(), indirect.z(), t.albedo.x(), t.albedo.y(), t.albedo.z(),
+                                          t.normal.x(), t.normal.y(), t.normal.z(), t.depth};
+                std::copy(values, values + 17, px);
+            }
+            counters.add("rays.shadow.delta", rays);
+        });
+        return img;
+    }
+
+    VplParams p_;
+};
+
+void checkPair(const std::string& text) { parsePair(text, 4096); }
+
+const TechniqueRegistrar registrar{{
+    "lighting.vpl_deferred",
+    "VPL lighting by deferred shading of interleaved sub-buffers (Segovia et al. 2006) with clamp compensation",
+    ParamTable("lighting.vpl_deferred",
+               {intParam("vpls", 480, 1, 1 << 22, "light paths; each leaves a VPL on the light and one where it first lands"),
+                stringParam("interleave", "4x4", "interleaving pattern n x m (1x1: plain deferred shading, every VPL at every pixel)", checkPair),
+                enumParam("split", "one_pass", {"one_pass", "two_pass"}, "G-buffer split/gather: texel by texel (fastest on CPUs), or block split then block translation"),
+                stringParam("block", "16x16", "block size p x q of the two-pass split (multiples of n and m; by default rounded up to them)", checkPair),
+                boolParam("visibility", true, "shadow rays per VPL and texel (SSM); false ignores visibility (SNSM)"),
+                floatParam("clamp", 0.05, 0, 10, "bounce VPLs' geometry term is clamped at 1/(clamp*scene diagonal)^2; 0 = no clamp"),
+                intParam("bias_compensation", 1, 0, 256, "rays per pixel restoring the clamped energy (Kollig-Keller); 0 = off"),
+                boolParam("filter", true, "discontinuity-aware Gaussian blur of the gathered light (interleaved patterns only)"),
+                intParam("kernel", 0, 0, 63, "Gaussian kernel size in pixels (sigma = radius / 2); 0: 2 max(n, m) + 1, wide enough to hide the pattern"),
+                floatParam("normal_threshold", 25, 0, 180, "discontinuity where neighbours' normals differ by more than this (degrees)"),
+                floatParam("position_threshold", 0.05, 0, 1e6, "discontinuity where neighbours are farther apart than this times their depth"),
+                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
+    [](const Scene& scene, const ParamSet& p) { return std::make_unique<VplDeferred>(scene, p); },
+}};
+
+}  // namespace
+
+}  // namespace weft
