@@ -1,6 +1,7 @@
 #include "oracles/feature_distance.hpp"
 
 #include <openvdb/tools/Morphology.h>
+#include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -31,16 +32,18 @@ OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleCo
     FloatGrid::Ptr distance = FloatGrid::create(cap);
     distance->setTransform(features.transform().copy());
     distance->setTree(std::make_shared<FloatTree>(features.tree(), cap, minimum, TopologyCopy()));
-    // Grow the reached region one voxel (26-neighbourhood) at a time; each new
-    // ring is merged in with its distance, until the cap is reached.
-    MaskTree reached(features.tree());
+    distance->tree().voxelizeActiveTiles();
+    // Grow the active region one voxel (26-neighbourhood) at a time. Voxels
+    // a dilation activates still hold the background (the cap), which is how
+    // each new ring is found and given its distance, all leaves in parallel.
     for (int k = 1; ringDistance(k - 1, ctx, cap) < cap; ++k) {
-        MaskTree previous(reached);
-        tools::dilateActiveValues(reached, 1, tools::NN_FACE_EDGE_VERTEX, tools::PRESERVE_TILES);
-        MaskTree ring(reached);
-        ring.topologyDifference(previous);
-        FloatTree ringValues(ring, cap, ringDistance(k, ctx, cap), TopologyCopy());
-        distance->tree().merge(ringValues, MERGE_ACTIVE_STATES);
+        tools::dilateActiveValues(distance->tree(), 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
+        const float ring = ringDistance(k, ctx, cap);
+        tree::LeafManager<FloatTree> leaves(distance->tree());
+        leaves.foreach([&](FloatTree::LeafNodeType& leaf, std::size_t) {
+            for (auto it = leaf.beginValueOn(); it; ++it)
+                if (*it == cap) it.setValue(ring);
+        });
     }
     OracleField field;
     field.constant = cap;
