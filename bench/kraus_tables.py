@@ -19,8 +19,7 @@ import os
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-WEFT = os.path.join(ROOT, "build", "bin", "weft")
+from benchlib import ROOT, WEFT, prepare_aneurism as convert_aneurism, rmse, run
 
 # (label, file tag, technique, --set values)
 COLUMNS = [
@@ -33,18 +32,8 @@ COLUMNS = [
 ROWS = ["volume.samples", "oracle.samples", "synthesis.ops", "composite.ops", "slices"]
 
 
-def run(args):
-    proc = subprocess.run(args, capture_output=True, text=True)
-    if proc.returncode != 0:
-        sys.exit("bench: command failed: %s\n%s" % (" ".join(args), proc.stderr.strip()))
-    return proc.stdout
-
-
 def prepare_aneurism(data, out):
-    vdb = os.path.join(out, "aneurism.vdb")
-    if not os.path.exists(vdb):
-        run([WEFT, "convert", os.path.join(data, "aneurism.raw.gz"), "--dims", "256,256,256",
-             "--type", "u8", "-o", vdb])
+    convert_aneurism(data, out)
     scene = os.path.join(out, "aneurism.json")
     with open(os.path.join(ROOT, "scenes", "aneurism.json")) as src, open(scene, "w") as dst:
         dst.write(src.read())
@@ -61,13 +50,6 @@ def render(scene, name, technique, sets, out, res, threads):
     run(args)
     with open(stats) as f:
         return exr, json.load(f)
-
-
-def rmse(a, b):
-    for line in run([WEFT, "diff", a, b]).splitlines():
-        if line.startswith("all "):
-            return float(line.split()[1])
-    return float("nan")
 
 
 def table(title, scene, tag, out, res, threads):

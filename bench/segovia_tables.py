@@ -35,16 +35,8 @@ import statistics
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-WEFT = os.path.join(ROOT, "build", "bin", "weft")
+from benchlib import ROOT, WEFT, run
 PASSES = ["BC.gbuffer", "BS.split", "SSM.shade", "SNSM.shade", "BG.gather", "DB.discontinuity", "B.blur"]
-
-
-def run(args):
-    proc = subprocess.run(args, capture_output=True, text=True)
-    if proc.returncode != 0:
-        sys.exit("bench: command failed: %s\n%s" % (" ".join(args), proc.stderr.strip()))
-    return proc.stdout
 
 
 def write_scenes(data, out):

@@ -26,32 +26,15 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-WEFT = os.path.join(ROOT, "build", "bin", "weft")
+from benchlib import ROOT, WEFT, prepare_aneurism, rmse, run_timed
 
 VDB_STEPS = [1, 0.5, 0.25, 0.125]
 # (step, shadowstep, cache_voxel), cheapest first.
 WEFT_KNOBS = [(6, 6, 6), (4, 4, 4), (3, 3, 4), (2, 2, 3), (1, 1, 2), (0.5, 1, 2)]
 
 
-def run(args):
-    start = time.perf_counter()
-    proc = subprocess.run(args, capture_output=True, text=True)
-    elapsed = time.perf_counter() - start
-    if proc.returncode != 0:
-        sys.exit("bench: command failed: %s\n%s%s" % (" ".join(args), proc.stdout, proc.stderr))
-    return elapsed, proc.stdout
-
-
 def timed(args, repeat):
-    return min(run(args)[0] for _ in range(repeat))
-
-
-def rmse(a, b):
-    for line in run([WEFT, "diff", a, b])[1].splitlines():
-        if line.startswith("all "):
-            return float(line.split()[1])
-    return float("nan")
+    return min(run_timed(args)[0] for _ in range(repeat))
 
 
 def vdb_render(vdb, out, scene, step, shadowstep, a):
@@ -145,13 +128,6 @@ def bench(name, vdb, scene, a):
     print("%s: weft reaches vdb_render step 1's RMSE %.5f in %.3f s%s: %.2fx faster" % (
         name, base["rmse"], t_weft, " (its cheapest setting is already better)" if bound else "", speedup))
     return speedup, bound
-
-
-def prepare_aneurism(data, out):
-    vdb = os.path.join(out, "aneurism.vdb")
-    if not os.path.exists(vdb):
-        run([WEFT, "convert", os.path.join(data, "aneurism.raw.gz"), "--dims", "256,256,256", "--type", "u8", "-o", vdb])
-    return vdb
 
 
 def main():

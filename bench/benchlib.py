@@ -1,0 +1,38 @@
+"""What the benchmark scripts share: where weft is, running a command (a
+failure ends the benchmark with its output), image RMSE through `weft diff`,
+and the aneurism converted to a VDB once."""
+import os
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WEFT = os.path.join(ROOT, "build", "bin", "weft")
+
+
+def run_timed(args):
+    """(seconds, stdout) of one run of args."""
+    start = time.perf_counter()
+    proc = subprocess.run(args, capture_output=True, text=True)
+    elapsed = time.perf_counter() - start
+    if proc.returncode != 0:
+        sys.exit("bench: command failed: %s\n%s%s" % (" ".join(args), proc.stdout, proc.stderr.strip()))
+    return elapsed, proc.stdout
+
+
+def run(args):
+    return run_timed(args)[1]
+
+
+def rmse(a, b):
+    for line in run([WEFT, "diff", a, b]).splitlines():
+        if line.startswith("all "):
+            return float(line.split()[1])
+    return float("nan")
+
+
+def prepare_aneurism(data, out):
+    vdb = os.path.join(out, "aneurism.vdb")
+    if not os.path.exists(vdb):
+        run([WEFT, "convert", os.path.join(data, "aneurism.raw.gz"), "--dims", "256,256,256", "--type", "u8", "-o", vdb])
+    return vdb
