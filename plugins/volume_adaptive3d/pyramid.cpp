@@ -1,6 +1,7 @@
 #include "plugins/volume_adaptive3d/pyramid.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace weft {
 
@@ -15,6 +16,7 @@ Pyramid::Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& s
         level.tilesX = (level.rays.width + kTile - 1) / kTile;
         level.tilesY = (level.rays.height + kTile - 1) / kTile;
         level.tileDueLevel.assign(std::size_t(level.tilesX) * level.tilesY, 0);
+        level.pixelAngle = 2.0 * std::tan(0.5 * camera.fovY * M_PI / 180.0) / imageHeight;
         levels_.push_back(std::move(level));
     }
     const std::size_t n = levels_[0].rays.dir.size();
@@ -95,8 +97,13 @@ void SliceWorker::sample(PyramidLevel& level, int l, int idx, int slice) {
         if (slice < rays.first[idx])
             dVoxels = std::min(dVoxels, float(std::max(1, rays.first[idx] - 1 - slice) * sc_.slices.spacing));
     }
+    // The skipping rule counts image-plane and ray distances in one unit
+    // (Kraus et al. assume pixels no wider than a slice): where pixels are
+    // wider, distances are counted in pixel widths, so a coarse level never
+    // skips a feature between its rays.
+    const double unit = std::max(sc_.slices.spacing, sc_.slices.t(slice) * level.pixelAngle);
     const float maxSlices = float(1 << sc_.lmax);
-    level.d[idx] = std::clamp(float(dVoxels / sc_.slices.spacing), 1.0f, maxSlices);
+    level.d[idx] = std::clamp(float(dVoxels / unit), 1.0f, maxSlices);
 }
 
 // Figure 8: the segment from the previous composite to this slice. A

@@ -38,6 +38,9 @@ struct PyramidLevel {
     std::vector<float> d;  // sampling distance, slices
     int tilesX = 0, tilesY = 0;
     std::vector<std::uint8_t> tileDueLevel;  // min dueLevel(d) over the tile
+    // Angle between neighbouring level-0 rays: at distance t from the eye
+    // they are t * pixelAngle voxels apart.
+    double pixelAngle = 0;
 };
 
 class Pyramid {
