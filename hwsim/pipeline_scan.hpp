@@ -1,0 +1,119 @@
+#pragma once
+// The per-fragment part of Pipeline (templates on the fragment program).
+// Included by pipeline.hpp only.
+
+namespace weft::hwsim {
+
+template <class Program>
+void Pipeline::draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits) {
+    const DrawPlan p = plan(traits);
+    if (s.empty()) return;
+    const int tx0 = s.x0 / p.tileW * p.tileW, ty0 = s.y0 / p.tileH * p.tileH;
+    const int rows = (s.y1 - ty0 + p.tileH - 1) / p.tileH;
+    tbb::combinable<StageCounts> perThread;
+    auto rowsBody = [&](const tbb::blocked_range<int>& r) {
+        StageCounts& c = perThread.local();
+        for (int row = r.begin(); row != r.end(); ++row)
+            for (int tx = tx0; tx < s.x1; tx += p.tileW) scanTile(s, program, p, tx, ty0 + row * p.tileH, c);
+    };
+    const long area = long(s.x1 - s.x0) * (s.y1 - s.y0);
+    if (parallel_ && rows > 1 && area >= 16384) tbb::parallel_for(tbb::blocked_range<int>(0, rows), rowsBody);
+    else rowsBody(tbb::blocked_range<int>(0, rows));
+    perThread.combine_each([&](const StageCounts& c) { counts_.add(c); });
+}
+
+// One tile: coverage and the rasterizer's tests for every quad, then the
+// coarse test of the whole tile, then each live quad through the rest.
+template <class Program>
+void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0,
+                        StageCounts& c) const {
+    const int x0 = std::max(tx0, s.x0), y0 = std::max(ty0, s.y0);
+    const int x1 = std::min(tx0 + p.tileW, s.x1), y1 = std::min(ty0 + p.tileH, s.y1);
+    const int qw = p.tileW / 2;
+    std::array<std::uint8_t, 32 * 32> masks;  // tiles are at most 64 x 64
+    int live = 0;
+    for (int qy = ty0; qy < y1; qy += 2)
+        for (int qx = tx0; qx < x1; qx += 2) {
+            unsigned m = 0;
+            for (int lane = 0; lane < 4; ++lane) {
+                const int x = qx + (lane & 1), y = qy + (lane >> 1);
+                if (x < x0 || x >= x1 || y < y0 || y >= y1 || !s.edges.covers(x, y)) continue;
+                ++c.generated;
+                if (p.stipple && !p.stippleLate && !stippleKeeps(x, y)) ++c.rejected[int(Stage::Stipple)];
+                else if (p.scissor && !scissorKeeps(x, y)) ++c.rejected[int(Stage::Scissor)];
+                else m |= 1u << lane;
+            }
+            masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m);
+            live += std::popcount(m);
+        }
+    if (live == 0) return;
+    if (p.coarse) cullCoarseTiles(s, p, tx0, ty0, y1, x1, masks.data(), c);
+    const int blocks = (p.tileW / p.blockW) * (p.tileH / p.blockH);
+    std::array<std::int64_t, 32 * 32> blockMax, blockLanes;  // blocks are at least 2x2 when used
+    const bool lockStep = p.blockW * p.blockH > 1;
+    if (lockStep) std::fill_n(blockMax.begin(), blocks, 0), std::fill_n(blockLanes.begin(), blocks, 0);
+    for (int qy = ty0; qy < y1; qy += 2)
+        for (int qx = tx0; qx < x1; qx += 2)
+            if (const unsigned m = masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2])
+                shadeQuad(s, program, p, qx, qy, m, c, lockStep ? blockMax.data() : nullptr, blockLanes.data(), tx0, ty0);
+    if (lockStep)
+        for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * blockLanes[b];
+}
+
+// One 2x2 quad whose covered lanes passed the rasterizer's tests (mask).
+template <class Program>
+void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                         StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const {
+    Pending pending[4];
+    float z[4];
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(mask >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const std::size_t idx = fb_.index(x, y);
+        z[lane] = s.depthAt(x, y);
+        Stage fail = Stage::Count;
+        if (p.boundsEarly && !inBounds(idx)) fail = Stage::Bounds;
+        else if (p.zsEarly) fail = stencilDepth(idx, z[lane], p, true, p.deferWrites ? &pending[lane] : nullptr);
+        if (fail != Stage::Count) ++c.rejected[int(fail)], mask &= ~(1u << lane);
+    }
+    if (!mask) return;
+    FragmentOutput out[4];
+    const unsigned shaded = p.quad ? 0xFu : mask;
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(shaded >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const bool helper = !(mask >> lane & 1u);
+        ++c.invocations;
+        c.helpers += helper;
+        const bool inside = x < fb_.width && y < fb_.height;
+        if (inside) program(Fragment{x, y, helper ? s.depthAt(x, y) : z[lane], helper}, out[lane]);
+        if (!blockMax) c.cost += out[lane].cost;
+        else {
+            const int b = ((y - ty0) / p.blockH) * (p.tileW / p.blockW) + (x - tx0) / p.blockW;
+            blockMax[b] = std::max<std::int64_t>(blockMax[b], inside ? out[lane].cost : 0);
+            ++blockLanes[b];
+        }
+    }
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(mask >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const std::size_t idx = fb_.index(x, y);
+        const FragmentOutput& o = out[lane];
+        if (o.discard) { ++c.discarded; continue; }
+        if (p.stippleLate && !stippleKeeps(x, y)) { ++c.rejected[int(Stage::Stipple)]; continue; }
+        if (p.bounds && !p.boundsEarly && !inBounds(idx)) { ++c.rejected[int(Stage::Bounds)]; continue; }
+        const float zf = p.writesDepth ? std::clamp(o.depth, 0.0f, 1.0f) : z[lane];
+        if (p.zsLate) {
+            const Stage fail = stencilDepth(idx, zf, p, false, nullptr);
+            if (fail != Stage::Count) { ++c.rejected[int(fail)]; continue; }
+        } else if (p.deferWrites) {
+            applyPending(idx, pending[lane]);
+        }
+        ++c.samplesPassed;
+        const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+        if (colorWritten) writeColor(idx, o.color);
+        c.pixelsWritten += colorWritten || p.depthWrites;
+    }
+}
+
+}  // namespace weft::hwsim

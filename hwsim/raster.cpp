@@ -1,0 +1,72 @@
+#include "hwsim/raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace weft::hwsim {
+
+namespace {
+
+std::int64_t snap(float v) { return std::llround(double(v) * kSubpixel); }
+
+// Whether a directed edge (dx, dy) of a counter-clockwise primitive owns the
+// centres on it. The interior lies left of the edge: a rightward horizontal
+// edge is a bottom edge, an upward edge is a right edge.
+bool ownsEdge(std::int64_t dx, std::int64_t dy, FillRule rule) {
+    const bool top = rule == FillRule::TopLeft || rule == FillRule::TopRight;
+    const bool left = rule == FillRule::TopLeft || rule == FillRule::BottomLeft;
+    if (dy == 0) return dx < 0 ? top : !top;
+    return dy < 0 ? left : !left;
+}
+
+void clipBox(PrimitiveSetup& s, double minX, double minY, double maxX, double maxY, int width, int height) {
+    s.x0 = std::max(0, int(std::floor(minX)));
+    s.y0 = std::max(0, int(std::floor(minY)));
+    s.x1 = std::min(width, int(std::ceil(maxX)) + 1);
+    s.y1 = std::min(height, int(std::ceil(maxY)) + 1);
+}
+
+}  // namespace
+
+PrimitiveSetup setupTriangle(const Vertex v[3], FillRule rule, int width, int height) {
+    PrimitiveSetup s;
+    std::int64_t X[3], Y[3];
+    for (int i = 0; i < 3; ++i) X[i] = snap(v[i].x), Y[i] = snap(v[i].y);
+    const std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+    if (area == 0) return s;  // empty box
+    int order[3] = {0, 1, 2};
+    if (area < 0) std::swap(order[1], order[2]);  // make it counter-clockwise
+    s.edges.count = 3;
+    for (int e = 0; e < 3; ++e) {
+        const int i = order[e], j = order[(e + 1) % 3];
+        const std::int64_t dx = X[j] - X[i], dy = Y[j] - Y[i];
+        s.edges.a[e] = -dy;
+        s.edges.b[e] = dx;
+        s.edges.c[e] = dy * X[i] - dx * Y[i];
+        s.edges.owns[e] = ownsEdge(dx, dy, rule);
+    }
+    // Depth plane through the snapped vertices.
+    const double x0 = double(X[0]) / kSubpixel, y0 = double(Y[0]) / kSubpixel;
+    const double x1 = double(X[1]) / kSubpixel - x0, y1 = double(Y[1]) / kSubpixel - y0;
+    const double x2 = double(X[2]) / kSubpixel - x0, y2 = double(Y[2]) / kSubpixel - y0;
+    const double z1 = double(v[1].z) - v[0].z, z2 = double(v[2].z) - v[0].z;
+    const double det = x1 * y2 - x2 * y1;
+    s.dzdx = (z1 * y2 - z2 * y1) / det;
+    s.dzdy = (x1 * z2 - x2 * z1) / det;
+    s.z0 = double(v[0].z) - s.dzdx * x0 - s.dzdy * y0;
+    if (v[0].z == v[1].z && v[1].z == v[2].z) s.z0 = v[0].z, s.dzdx = s.dzdy = 0;  // constant depth stays exact
+    const double minX = std::min({X[0], X[1], X[2]}) / double(kSubpixel), maxX = std::max({X[0], X[1], X[2]}) / double(kSubpixel);
+    const double minY = std::min({Y[0], Y[1], Y[2]}) / double(kSubpixel), maxY = std::max({Y[0], Y[1], Y[2]}) / double(kSubpixel);
+    clipBox(s, minX, minY, maxX, maxY, width, height);
+    return s;
+}
+
+PrimitiveSetup setupRect(int x0, int y0, int x1, int y1, float z, int width, int height) {
+    PrimitiveSetup s;
+    s.x0 = std::max(0, x0), s.y0 = std::max(0, y0), s.x1 = std::min(width, x1), s.y1 = std::min(height, y1);
+    s.edges.count = 0;  // every centre of the clipped box is inside
+    s.z0 = z;
+    return s;
+}
+
+}  // namespace weft::hwsim

@@ -1,0 +1,58 @@
+#pragma once
+// Scan conversion: which pixel centres a convex primitive covers. Vertices
+// are snapped to 1/256 pixel (8 sub-pixel bits, as Mesa's rasterizers do)
+// and every edge is an exact 64-bit integer edge function, so shared edges
+// are decided consistently: a centre exactly on an edge belongs to the
+// primitive only on the edges the fill rule names (GL lets the
+// implementation choose; profiles say which).
+#include <cstdint>
+
+namespace weft::hwsim {
+
+struct Vertex {
+    float x, y, z;  // window coordinates; z in [0, 1]
+};
+
+// Which edges own the centres exactly on them, in GL window coordinates
+// (y up): a horizontal edge is a top or bottom edge, any other a left or
+// right edge.
+enum class FillRule : std::uint8_t { TopLeft, TopRight, BottomLeft, BottomRight };
+
+constexpr int kSubpixelBits = 8;
+constexpr std::int64_t kSubpixel = 1 << kSubpixelBits;
+
+// Up to four edges E(px, py) = a*px + b*py + c over sub-pixel coordinates;
+// a pixel centre is inside when every E > 0, or E == 0 on an owning edge.
+struct EdgeSet {
+    int count = 0;
+    std::int64_t a[4]{}, b[4]{}, c[4]{};
+    bool owns[4]{};
+    // Whether the centre of pixel (x, y) is covered.
+    bool covers(int x, int y) const {
+        const std::int64_t px = std::int64_t(x) * kSubpixel + kSubpixel / 2, py = std::int64_t(y) * kSubpixel + kSubpixel / 2;
+        for (int i = 0; i < count; ++i) {
+            const std::int64_t e = a[i] * px + b[i] * py + c[i];
+            if (e < 0 || (e == 0 && !owns[i])) return false;
+        }
+        return true;
+    }
+};
+
+// A primitive ready to scan: its edges, the pixel bounding box clipped to
+// the target (x1, y1 exclusive), and its depth plane z = z0 + dzdx*cx + dzdy*cy
+// at pixel centres (cx, cy).
+struct PrimitiveSetup {
+    EdgeSet edges;
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    double z0 = 0, dzdx = 0, dzdy = 0;
+    bool empty() const { return x0 >= x1 || y0 >= y1; }
+    float depthAt(int x, int y) const { return float(z0 + dzdx * (x + 0.5) + dzdy * (y + 0.5)); }
+};
+
+// A triangle (either winding; zero area covers nothing) inside a width x height target.
+PrimitiveSetup setupTriangle(const Vertex v[3], FillRule rule, int width, int height);
+// A screen-aligned rectangle [x0, x1) x [y0, y1) at constant depth, scanned as
+// one primitive (as a viewport-covering triangle clipped to it would be).
+PrimitiveSetup setupRect(int x0, int y0, int x1, int y1, float z, int width, int height);
+
+}  // namespace weft::hwsim
