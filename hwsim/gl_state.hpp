@@ -20,7 +20,12 @@ struct StippleState {
     bool enabled = false;
     std::array<std::uint32_t, 32> rows{};
     // The pattern that keeps pixels with x mod n == i and y mod n == j (n divides 32).
-    static std::array<std::uint32_t, 32> interleaved(int n, int i, int j);
+    static std::array<std::uint32_t, 32> interleaved(int n, int i, int j) {
+        std::array<std::uint32_t, 32> rows{};
+        for (int y = j; y < 32; y += n)
+            for (int x = i; x < 32; x += n) rows[y] |= 1u << x;
+        return rows;
+    }
 };
 
 struct ScissorState {

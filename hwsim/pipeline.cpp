@@ -4,13 +4,6 @@
 
 namespace weft::hwsim {
 
-std::array<std::uint32_t, 32> StippleState::interleaved(int n, int i, int j) {
-    std::array<std::uint32_t, 32> rows{};
-    for (int y = j; y < 32; y += n)
-        for (int x = i; x < 32; x += n) rows[y] |= 1u << x;
-    return rows;
-}
-
 void Pipeline::clearDepth(float value) {
     std::fill(fb_.depth.begin(), fb_.depth.end(), value);
     frameDirection_ = 0, coarseLost_ = false, frameBoundsSet_ = false, boundsLost_ = false;
@@ -68,12 +61,12 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
                       (t.writesDepth || (t.sideEffects && pr.sideEffectsForceLate) ||
                        (mayKill && discardForcesLate(pr.discardForcesLate, p.depthWrites, p.stencilWrites)));
     const bool zs = p.depth || p.stencil;
-    const bool perPixel = pr.earlyTests == EarlyTests::PerPixel;
+    const bool perPixel = pr.earlyTests == EarlyTests::PerPixel && (!pr.earlyNeedsDepthTest || p.depth);
     p.zsEarly = zs && (t.earlyFragmentTests || (!late && perPixel));
     p.zsLate = zs && !p.zsEarly;
     p.deferWrites = p.zsEarly && mayKill && !t.earlyFragmentTests && (p.depthWrites || p.stencilWrites);
     const bool boundsMayBeEarly = p.bounds && pr.bounds == BoundsSupport::Early && !(pr.boundsChangeForcesLate && boundsLost_);
-    p.boundsEarly = boundsMayBeEarly && perPixel;
+    p.boundsEarly = (boundsMayBeEarly && perPixel) || (p.bounds && pr.bounds == BoundsSupport::WithDepthTest && p.zsEarly);
 
     const bool coarseOk = pr.coarseTile > 0 && pr.earlyTests != EarlyTests::None;
     const bool stencilFailKeeps = !p.stencil || state.stencil.sfail == StencilOp::Keep;
@@ -84,6 +77,7 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.coarse = p.coarseBounds || p.coarseStencil || p.coarseDepth;
     p.coarseTile = pr.coarseTile;
 
+    p.countEarly = t.earlyFragmentTests && pr.queryCountsAtEarlyTests;
     p.quad = pr.shading == ShadingGranularity::Quad;
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH;
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});

@@ -58,6 +58,7 @@ struct DrawPlan {
     bool depthWrites = false, stencilWrites = false, writesDepth = false;
     bool coarse = false, coarseDepth = false, coarseStencil = false, coarseBounds = false;
     bool quad = false;
+    bool countEarly = false;  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
     int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
 };
 

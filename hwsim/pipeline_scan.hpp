@@ -75,6 +75,7 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         if (p.boundsEarly && !inBounds(idx)) fail = Stage::Bounds;
         else if (p.zsEarly) fail = stencilDepth(idx, z[lane], p, true, p.deferWrites ? &pending[lane] : nullptr);
         if (fail != Stage::Count) ++c.rejected[int(fail)], mask &= ~(1u << lane);
+        else if (p.countEarly) ++c.samplesPassed;
     }
     if (!mask) return;
     FragmentOutput out[4];
@@ -109,7 +110,7 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         } else if (p.deferWrites) {
             applyPending(idx, pending[lane]);
         }
-        ++c.samplesPassed;
+        if (!p.countEarly) ++c.samplesPassed;
         const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
         if (colorWritten) writeColor(idx, o.color);
         c.pixelsWritten += colorWritten || p.depthWrites;

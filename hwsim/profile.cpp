@@ -87,18 +87,20 @@ Profile readProfile(Reader& r) {
     p.stipple = r.choice<StipplePosition>("stipple", {{"rasterizer", StipplePosition::Rasterizer}, {"late", StipplePosition::Late}});
     p.polygonStipple = r.flag("polygon_stipple");
     p.stippleDisablesEarly = r.flag("stipple_disables_early_tests");
+    p.earlyNeedsDepthTest = r.flag("early_tests_need_depth_test");
     p.earlyTests = r.choice<EarlyTests>(
         "early_tests", {{"per_pixel", EarlyTests::PerPixel}, {"coarse_only", EarlyTests::CoarseOnly}, {"none", EarlyTests::None}});
     p.coarseTile = r.power2("coarse_tile", 0, 64);
     p.coarseStencil = r.flag("coarse_stencil");
     p.bounds = r.choice<BoundsSupport>(
-        "depth_bounds", {{"early", BoundsSupport::Early}, {"late", BoundsSupport::Late}, {"unsupported", BoundsSupport::Unsupported}});
+        "depth_bounds", {{"early", BoundsSupport::Early}, {"with_depth_test", BoundsSupport::WithDepthTest}, {"late", BoundsSupport::Late}, {"unsupported", BoundsSupport::Unsupported}});
     p.boundsChangeForcesLate = r.flag("bounds_change_forces_late");
     p.directionChangeDisablesCoarse = r.flag("depth_direction_change_disables_coarse");
     p.discardForcesLate = r.choice<DiscardRule>("discard_forces_late", {{"never", DiscardRule::Never}, {"always", DiscardRule::Always},
                                                                          {"with_stencil_writes", DiscardRule::WithStencilWrites},
                                                                          {"with_depth_or_stencil_writes", DiscardRule::WithDepthOrStencilWrites}});
     p.sideEffectsForceLate = r.flag("side_effects_force_late");
+    p.queryCountsAtEarlyTests = r.flag("query_counts_at_early_tests");
     p.shading = r.choice<ShadingGranularity>("shading", {{"pixel", ShadingGranularity::Pixel}, {"quad", ShadingGranularity::Quad}});
     const json& block = r.at("branch_block");
     if (!block.is_array() || block.size() != 2) r.fail("branch_block", "must be [width, height]");

@@ -13,7 +13,7 @@ namespace weft::hwsim {
 
 enum class StipplePosition { Rasterizer, Late };       // rejected at scan conversion, or after the program
 enum class EarlyTests { PerPixel, CoarseOnly, None };  // depth/stencil/bounds tests before the program
-enum class BoundsSupport { Early, Late, Unsupported };
+enum class BoundsSupport { Early, WithDepthTest, Late, Unsupported };  // WithDepthTest: early exactly when depth is
 enum class DiscardRule { Never, Always, WithStencilWrites, WithDepthOrStencilWrites };
 enum class ShadingGranularity { Pixel, Quad };
 
@@ -31,7 +31,9 @@ struct Profile {
     bool directionChangeDisablesCoarse = false;  // LESS <-> GREATER within a frame loses coarse culling until a clear
     DiscardRule discardForcesLate = DiscardRule::Never;  // otherwise: test early, write after the program
     bool sideEffectsForceLate = true;   // programs with memory side effects run before the tests (GL rule)
-    bool stippleDisablesEarly = false;  // stipple implemented as a discard inserted into the program
+    bool stippleDisablesEarly = false;
+    bool earlyNeedsDepthTest = false;  // no early tests (stencil, bounds) unless the depth test is on
+    bool queryCountsAtEarlyTests = true;  // with early_fragment_tests, SAMPLES_PASSED counts before a discard (GL spec)  // stipple implemented as a discard inserted into the program
     ShadingGranularity shading = ShadingGranularity::Pixel;
     int branchBlockW = 1, branchBlockH = 1;  // pixels executing one program in lock step (dynamic branching)
     bool polygonStipple = true;               // feature present

@@ -29,9 +29,9 @@ TEST(HwsimProfile, BadFilesNameKeyAndValidValues) {
     EXPECT_NE(errorOf("{").find("p.json"), std::string::npos);
     EXPECT_NE(errorOf("{\"name\": \"x\"}").find("missing key 'description'"), std::string::npos);
     const std::string base = R"({"name":"x","description":"d","sources":"s","fill_rule":"top_left","stipple":"rasterizer",
-      "polygon_stipple":true,"stipple_disables_early_tests":false,"early_tests":"per_pixel","coarse_tile":0,
+      "polygon_stipple":true,"stipple_disables_early_tests":false,"early_tests":"per_pixel","early_tests_need_depth_test":false,"coarse_tile":0,
       "coarse_stencil":false,"depth_bounds":"early","bounds_change_forces_late":false,
-      "depth_direction_change_disables_coarse":false,"discard_forces_late":"never","side_effects_force_late":true,
+      "depth_direction_change_disables_coarse":false,"discard_forces_late":"never","side_effects_force_late":true,"query_counts_at_early_tests":true,
       "shading":"pixel","branch_block":[1,1])";
     EXPECT_EQ(errorOf(base + "}"), "");
     EXPECT_NE(errorOf(base + ",\"colour\":1}").find("unknown key 'colour'"), std::string::npos);
