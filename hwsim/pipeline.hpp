@@ -49,6 +49,22 @@ struct FragmentOutput {
     int cost = 1;          // length of the path this invocation took (branch cost model)
 };
 
+// A program whose outputs go to storage of the caller's (further render
+// targets, as a multi-target program writes them): `write` runs for every
+// fragment that passes all tests, where the pipeline writes colour; a
+// fragment rejected after the program leaves no trace, as on hardware.
+template <class Shade, class Write>
+struct ProgramWithWrites {
+    Shade shade;
+    Write write;
+    void operator()(const Fragment& f, FragmentOutput& o) const { shade(f, o); }
+    void writeOutputs(const Fragment& f, const FragmentOutput& o) const { write(f, o); }
+};
+template <class Shade, class Write>
+ProgramWithWrites<Shade, Write> withWrites(Shade shade, Write write) {
+    return {std::move(shade), std::move(write)};
+}
+
 // Where each stage runs for one draw; made once per draw from the state,
 // the profile and the program's traits.
 struct DrawPlan {

@@ -113,6 +113,7 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         if (!p.countEarly) ++c.samplesPassed;
         const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
         if (colorWritten) writeColor(idx, o.color);
+        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false}, o);
         c.pixelsWritten += colorWritten || p.depthWrites;
     }
 }

@@ -40,6 +40,9 @@ struct PyramidLevel {
     std::vector<std::uint8_t> tileDueLevel;  // min dueLevel(d) over the tile
 };
 
+// volume.adaptive3d's parameter table (its replays in hwsim share it).
+std::vector<ParamSpec> adaptiveParamSpecs();
+
 class Pyramid {
 public:
     Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& slices, int lmax, int paddedWidth,
@@ -72,10 +75,13 @@ public:
     std::uint8_t tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty);
     void flush();  // adds this worker's counts to the counters
 
-private:
+    // The three operations of Figure 4 on one pixel (hwsim's replays run
+    // them as fragment programs of the paper's GPU passes).
     void synthesize(Pyramid& pyramid, int l, int x, int y, int idx);
     void sample(PyramidLevel& level, int idx, int slice);
     void composite(Pyramid& pyramid, int idx, int slice);
+
+private:
 
     SliceContext& sc_;
     ScalarSampler data_;
