@@ -85,36 +85,6 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     return p;
 }
 
-Stage Pipeline::stencilDepth(std::size_t idx, float z, const DrawPlan& p, bool early, Pending* pending) const {
-    const StencilState& st = state.stencil;
-    std::uint8_t& stored = fb_.stencil[idx];
-    auto stencilUpdate = [&](StencilOp op, Pending* into) {
-        if (!p.stencil) return;
-        const std::uint8_t v = maskedStencilWrite(stored, applyStencilOp(op, stored, st.ref), st.writeMask);
-        if (into) into->stencil = true, into->stencilValue = v;
-        else stored = v;
-    };
-    if (p.stencil && !stencilPasses(st, stored)) {
-        stencilUpdate(st.sfail, nullptr);
-        return Stage::Stencil;
-    }
-    if (p.depth && !compare(state.depth.func, z, fb_.depth[idx])) {
-        stencilUpdate(st.dpfail, nullptr);
-        return early ? Stage::DepthEarly : Stage::DepthLate;
-    }
-    stencilUpdate(st.dppass, pending);
-    if (p.depthWrites) {
-        if (pending) pending->depth = true, pending->depthValue = z;
-        else fb_.depth[idx] = z;
-    }
-    return Stage::Count;
-}
-
-void Pipeline::applyPending(std::size_t idx, const Pending& pending) const {
-    if (pending.stencil) fb_.stencil[idx] = pending.stencilValue;
-    if (pending.depth) fb_.depth[idx] = pending.depthValue;
-}
-
 namespace {
 
 // Whether every stored value in [lo, hi] fails "incoming func stored" for
@@ -175,30 +145,6 @@ void Pipeline::cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int t
             for (int qy = cy; qy < cy + ct; qy += 2)
                 for (int qx = cx; qx < cx + ct; qx += 2) masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = 0;
         }
-}
-
-namespace {
-
-float factor(BlendFactor f, const std::array<float, 4>& src, const std::array<float, 4>& dst) {
-    switch (f) {
-        case BlendFactor::Zero: return 0;
-        case BlendFactor::One: return 1;
-        case BlendFactor::SrcAlpha: return src[3];
-        case BlendFactor::OneMinusSrcAlpha: return 1 - src[3];
-        case BlendFactor::DstAlpha: return dst[3];
-        case BlendFactor::OneMinusDstAlpha: return 1 - dst[3];
-    }
-    return 1;
-}
-
-}  // namespace
-
-void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src) const {
-    std::array<float, 4>& dst = fb_.color[idx];
-    const BlendState& b = state.blend;
-    const float fs = b.enabled ? factor(b.src, src, dst) : 1, fd = b.enabled ? factor(b.dst, src, dst) : 0;
-    for (int ch = 0; ch < 4; ++ch)
-        if (state.colorMask[ch]) dst[ch] = b.enabled ? src[ch] * fs + dst[ch] * fd : src[ch];
 }
 
 }  // namespace weft::hwsim

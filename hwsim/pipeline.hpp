@@ -142,6 +142,22 @@ private:
         return d >= state.bounds.zmin && d <= state.bounds.zmax;
     }
     bool stippleKeeps(int x, int y) const { return (state.stipple.rows[y & 31] >> (x & 31)) & 1u; }
+    // Lane bits of quad (qx, qy) (qx even): lane = dx + 2 dy.
+    unsigned stippleQuad(int qx, int qy) const {
+        const unsigned bottom = (state.stipple.rows[qy & 31] >> (qx & 31)) & 3u;
+        const unsigned top = (state.stipple.rows[(qy + 1) & 31] >> (qx & 31)) & 3u;
+        return bottom | top << 2;
+    }
+    static unsigned inBoxMask(int qx, int qy, int x0, int y0, int x1, int y1) {
+        const unsigned cols = unsigned(qx >= x0 && qx < x1) | unsigned(qx + 1 >= x0 && qx + 1 < x1) << 1;
+        const unsigned rows = unsigned(qy >= y0 && qy < y1) | unsigned(qy + 1 >= y0 && qy + 1 < y1) << 1;
+        return (rows & 1u ? cols : 0u) | (rows & 2u ? cols << 2 : 0u);
+    }
+    // The kept lanes of mask; adds the dropped ones to a rejection count.
+    static unsigned keep(unsigned mask, unsigned kept, std::int64_t& rejected) {
+        rejected += std::popcount(mask & ~kept);
+        return mask & kept;
+    }
     bool scissorKeeps(int x, int y) const {
         const ScissorState& s = state.scissor;
         return x >= s.x && x < s.x + s.width && y >= s.y && y < s.y + s.height;

@@ -31,18 +31,19 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
     const int x1 = std::min(tx0 + p.tileW, s.x1), y1 = std::min(ty0 + p.tileH, s.y1);
     const int qw = p.tileW / 2;
     std::array<std::uint8_t, 32 * 32> masks;  // tiles are at most 64 x 64
+    const TileCoverage coverage = classifyTile(s.edges, tx0, ty0, tx0 + p.tileW, ty0 + p.tileH);
+    if (coverage == TileCoverage::None) return;
     int live = 0;
     for (int qy = ty0; qy < y1; qy += 2)
         for (int qx = tx0; qx < x1; qx += 2) {
-            unsigned m = 0;
-            for (int lane = 0; lane < 4; ++lane) {
-                const int x = qx + (lane & 1), y = qy + (lane >> 1);
-                if (x < x0 || x >= x1 || y < y0 || y >= y1 || !s.edges.covers(x, y)) continue;
-                ++c.generated;
-                if (p.stipple && !p.stippleLate && !stippleKeeps(x, y)) ++c.rejected[int(Stage::Stipple)];
-                else if (p.scissor && !scissorKeeps(x, y)) ++c.rejected[int(Stage::Scissor)];
-                else m |= 1u << lane;
-            }
+            unsigned m = inBoxMask(qx, qy, x0, y0, x1, y1);
+            if (coverage == TileCoverage::Partial)
+                for (int lane = 0; lane < 4; ++lane)
+                    if ((m >> lane & 1u) && !s.edges.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
+            c.generated += std::popcount(m);
+            if (m && p.stipple && !p.stippleLate) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
+            if (m && p.scissor) m = keep(m, inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
+                                                      state.scissor.y + state.scissor.height), c.rejected[int(Stage::Scissor)]);
             masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m);
             live += std::popcount(m);
         }
@@ -116,6 +117,60 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false}, o);
         c.pixelsWritten += colorWritten || p.depthWrites;
     }
+}
+
+inline Stage Pipeline::stencilDepth(std::size_t idx, float z, const DrawPlan& p, bool early, Pending* pending) const {
+    const StencilState& st = state.stencil;
+    std::uint8_t& stored = fb_.stencil[idx];
+    auto stencilUpdate = [&](StencilOp op, Pending* into) {
+        if (!p.stencil) return;
+        const std::uint8_t v = maskedStencilWrite(stored, applyStencilOp(op, stored, st.ref), st.writeMask);
+        if (into) into->stencil = true, into->stencilValue = v;
+        else stored = v;
+    };
+    if (p.stencil && !stencilPasses(st, stored)) {
+        stencilUpdate(st.sfail, nullptr);
+        return Stage::Stencil;
+    }
+    if (p.depth && !compare(state.depth.func, z, fb_.depth[idx])) {
+        stencilUpdate(st.dpfail, nullptr);
+        return early ? Stage::DepthEarly : Stage::DepthLate;
+    }
+    stencilUpdate(st.dppass, pending);
+    if (p.depthWrites) {
+        if (pending) pending->depth = true, pending->depthValue = z;
+        else fb_.depth[idx] = z;
+    }
+    return Stage::Count;
+}
+
+inline void Pipeline::applyPending(std::size_t idx, const Pending& pending) const {
+    if (pending.stencil) fb_.stencil[idx] = pending.stencilValue;
+    if (pending.depth) fb_.depth[idx] = pending.depthValue;
+}
+
+namespace detail {
+
+inline float factor(BlendFactor f, const std::array<float, 4>& src, const std::array<float, 4>& dst) {
+    switch (f) {
+        case BlendFactor::Zero: return 0;
+        case BlendFactor::One: return 1;
+        case BlendFactor::SrcAlpha: return src[3];
+        case BlendFactor::OneMinusSrcAlpha: return 1 - src[3];
+        case BlendFactor::DstAlpha: return dst[3];
+        case BlendFactor::OneMinusDstAlpha: return 1 - dst[3];
+    }
+    return 1;
+}
+
+}  // namespace detail
+
+inline void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src) const {
+    std::array<float, 4>& dst = fb_.color[idx];
+    const BlendState& b = state.blend;
+    const float fs = b.enabled ? detail::factor(b.src, src, dst) : 1, fd = b.enabled ? detail::factor(b.dst, src, dst) : 0;
+    for (int ch = 0; ch < 4; ++ch)
+        if (state.colorMask[ch]) dst[ch] = b.enabled ? src[ch] * fs + dst[ch] * fd : src[ch];
 }
 
 }  // namespace weft::hwsim

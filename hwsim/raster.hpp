@@ -38,6 +38,24 @@ struct EdgeSet {
     }
 };
 
+enum class TileCoverage { None, Partial, Full };
+
+// Whether the pixel centres of [x0, x1) x [y0, y1) are all outside one edge,
+// all strictly inside every edge, or mixed: edge functions are linear, so
+// their extremes over the centres lie at the corner centres.
+inline TileCoverage classifyTile(const EdgeSet& e, int x0, int y0, int x1, int y1) {
+    const std::int64_t px0 = std::int64_t(x0) * kSubpixel + kSubpixel / 2, px1 = std::int64_t(x1 - 1) * kSubpixel + kSubpixel / 2;
+    const std::int64_t py0 = std::int64_t(y0) * kSubpixel + kSubpixel / 2, py1 = std::int64_t(y1 - 1) * kSubpixel + kSubpixel / 2;
+    bool full = true;
+    for (int i = 0; i < e.count; ++i) {
+        const std::int64_t lo = e.a[i] * (e.a[i] > 0 ? px0 : px1) + e.b[i] * (e.b[i] > 0 ? py0 : py1) + e.c[i];
+        const std::int64_t hi = e.a[i] * (e.a[i] > 0 ? px1 : px0) + e.b[i] * (e.b[i] > 0 ? py1 : py0) + e.c[i];
+        if (hi < 0 || (hi == 0 && !e.owns[i])) return TileCoverage::None;
+        if (lo <= 0) full = false;
+    }
+    return full ? TileCoverage::Full : TileCoverage::Partial;
+}
+
 // A primitive ready to scan: its edges, the pixel bounding box clipped to
 // the target (x1, y1 exclusive), and its depth plane z = z0 + dzdx*cx + dzdy*cy
 // at pixel centres (cx, cy).
