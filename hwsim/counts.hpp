@@ -8,7 +8,7 @@
 //   fragment_program.helpers         of those, helper invocations
 //   fragment_program.cost            lock-step cost: per branch block, lanes x the longest path
 //   samples.passed                   what a SAMPLES_PASSED query counts
-//   pixels.written                   passed fragments that changed a colour or depth value
+//   pixels.written                   passed fragments that write colour (any channel enabled) or depth
 //   coarse.tiles_culled              hierarchical Z/stencil tiles rejected whole
 #include <cstdint>
 

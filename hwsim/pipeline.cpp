@@ -136,14 +136,15 @@ void Pipeline::cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int t
     for (int cy = ty0; cy < y1; cy += ct)
         for (int cx = tx0; cx < x1; cx += ct) {
             int live = 0;
-            for (int qy = cy; qy < cy + ct; qy += 2)
-                for (int qx = cx; qx < cx + ct; qx += 2) live += std::popcount(unsigned(masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2]));
+            const int qy1 = std::min(cy + ct, y1), qx1 = std::min(cx + ct, x1);  // masks beyond are unset
+            for (int qy = cy; qy < qy1; qy += 2)
+                for (int qx = cx; qx < qx1; qx += 2) live += std::popcount(unsigned(masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2]));
             Stage stage;
             if (live == 0 || !coarseReject(s, p, cx, cy, cx + ct, cy + ct, stage)) continue;
             c.rejected[int(stage)] += live;
             ++c.tilesCulled;
-            for (int qy = cy; qy < cy + ct; qy += 2)
-                for (int qx = cx; qx < cx + ct; qx += 2) masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = 0;
+            for (int qy = cy; qy < qy1; qy += 2)
+                for (int qx = cx; qx < qx1; qx += 2) masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = 0;
         }
 }
 

@@ -104,7 +104,7 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         if (o.discard) { ++c.discarded; continue; }
         if (p.stippleLate && !stippleKeeps(x, y)) { ++c.rejected[int(Stage::Stipple)]; continue; }
         if (p.bounds && !p.boundsEarly && !inBounds(idx)) { ++c.rejected[int(Stage::Bounds)]; continue; }
-        const float zf = p.writesDepth ? std::clamp(o.depth, 0.0f, 1.0f) : z[lane];
+        const float zf = p.writesDepth ? (o.depth >= 0.0f ? std::min(o.depth, 1.0f) : 0.0f) : z[lane];  // NaN -> 0
         if (p.zsLate) {
             const Stage fail = stencilDepth(idx, zf, p, false, nullptr);
             if (fail != Stage::Count) { ++c.rejected[int(fail)]; continue; }

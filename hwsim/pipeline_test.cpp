@@ -1,6 +1,8 @@
 // Per-stage tests of the modelled pipeline on small hand-counted cases.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/error.hpp"
 #include "hwsim/pipeline.hpp"
 
@@ -59,6 +61,23 @@ TEST(HwsimRaster, DegenerateAndOffscreenCoverNothing) {
     pipe.drawTriangle(line, Flat{});
     pipe.drawTriangle(off, Flat{});
     EXPECT_EQ(pipe.counts().generated, 0);
+}
+
+TEST(HwsimRaster, ExtremesAreEmptyOrClearErrors) {
+    Framebuffer fb(8, 8);
+    Pipeline pipe(fb, findProfile("ideal"));
+    const float nan = std::nanf(""), inf = INFINITY;
+    const Vertex bad[3] = {{0, 0, nan}, {8, 0, 0}, {0, 8, 0}}, worse[3] = {{inf, 0, 0}, {8, 0, 0}, {0, 8, 0}};
+    pipe.drawTriangle(bad, Flat{});
+    pipe.drawTriangle(worse, Flat{});
+    EXPECT_EQ(pipe.counts().generated, 0);
+    const Vertex huge[3] = {{-3e6f, 0, 0}, {8, 0, 0}, {0, 8, 0}};
+    EXPECT_THROW(pipe.drawTriangle(huge, Flat{}), Error);
+    const Vertex big[3] = {{-1e6f, -1e6f, 0.5f}, {1e6f, -1e6f, 0.5f}, {0, 1e6f, 0.5f}};  // covers the target
+    pipe.state.depth = {true, CompareFunc::Always, true};
+    pipe.drawTriangle(big, [](const Fragment&, FragmentOutput& o) { o.depth = std::nanf(""); }, {.writesDepth = true});
+    EXPECT_EQ(pipe.counts().generated, 64);
+    for (float d : fb.depth) EXPECT_EQ(d, 0.0f);  // a NaN program depth is stored as 0, never as NaN
 }
 
 TEST(HwsimStipple, KeepsOneClassAndRepeatsEvery32Pixels) {
@@ -326,6 +345,45 @@ TEST(HwsimBounds, ChangingBoundsLosesTheEarlyTestOnGeforce7800) {
     pipe.drawRect(0, 0, 16, 16, 0, Flat{});
     EXPECT_EQ(pipe.counts().invocations, 256);
     EXPECT_EQ(pipe.counts().rejected[int(Stage::Bounds)], 512);
+}
+
+}  // namespace
+}  // namespace weft::hwsim
+
+namespace weft::hwsim {
+namespace {
+
+// Counts and buffers do not depend on how tiles were spread over threads.
+TEST(HwsimPipeline, ThreadedAndSerialDrawsAgree) {
+    auto render = [](bool parallel, const char* profile) {
+        Framebuffer fb(300, 200);
+        Pipeline pipe(fb, findProfile(profile));
+        pipe.setParallel(parallel);
+        pipe.state.depth = {true, CompareFunc::LessEqual, true};
+        pipe.state.stencil = {true, CompareFunc::Always, 1, 0xff, 0xff, StencilOp::Keep, StencilOp::Keep, StencilOp::IncrWrap};
+        pipe.state.blend = {true, BlendFactor::One, BlendFactor::One};
+        for (int i = 0; i < 40; ++i) {
+            const float a = float(i) * 0.7f;
+            const Vertex v[3] = {{150 + 180 * std::cos(a), 100 + 150 * std::sin(a), 0.02f * float(i % 7)},
+                                 {150 + 160 * std::cos(a + 2.2f), 100 + 140 * std::sin(a + 2.2f), 0.5f},
+                                 {150 + 170 * std::cos(a + 4.1f), 100 + 130 * std::sin(a + 4.1f), 0.9f}};
+            pipe.drawTriangle(v, [](const Fragment& f, FragmentOutput& o) {
+                o.color = {f.z, 1, 0, 1};
+                o.discard = (f.x * 7 + f.y * 3) % 11 == 0;
+                o.cost = 1 + (f.x & 3);
+            }, {.mayDiscard = true});
+        }
+        return std::make_pair(pipe.counts().named(), fb);
+    };
+    for (const char* profile : {"ideal", "geforce-7800", "modern-desktop"}) {
+        const auto [serialCounts, serialFb] = render(false, profile);
+        const auto [parallelCounts, parallelFb] = render(true, profile);
+        EXPECT_EQ(serialCounts, parallelCounts) << profile;
+        EXPECT_EQ(serialFb.color, parallelFb.color) << profile;
+        EXPECT_EQ(serialFb.depth, parallelFb.depth) << profile;
+        EXPECT_EQ(serialFb.stencil, parallelFb.stencil) << profile;
+        EXPECT_GT(serialCounts.at("fragments.generated"), 50000) << profile;
+    }
 }
 
 }  // namespace

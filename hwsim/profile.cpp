@@ -108,6 +108,8 @@ Profile readProfile(Reader& r) {
     p.branchBlockH = r.power2("branch_block", block[1], 1, 64);
     if (p.earlyTests == EarlyTests::CoarseOnly && p.coarseTile == 0)
         r.fail("coarse_tile", "must be set when early_tests is coarse_only");
+    if (p.branchBlockW * p.branchBlockH > 1 && (p.branchBlockW < 2 || p.branchBlockH < 2))
+        r.fail("branch_block", "must be [1, 1] or at least [2, 2]");
     if (p.shading == ShadingGranularity::Quad && (p.branchBlockW < 2 || p.branchBlockH < 2))
         r.fail("branch_block", "must hold whole 2x2 quads when shading is quad");
     r.rejectUnknown();

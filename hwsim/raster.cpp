@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "core/error.hpp"
 
 namespace weft::hwsim {
 
@@ -30,6 +33,12 @@ void clipBox(PrimitiveSetup& s, double minX, double minY, double maxX, double ma
 
 PrimitiveSetup setupTriangle(const Vertex v[3], FillRule rule, int width, int height) {
     PrimitiveSetup s;
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(v[i].x) || !std::isfinite(v[i].y) || !std::isfinite(v[i].z)) return s;  // covers nothing
+        if (std::fabs(v[i].x) > kMaxCoordinate || std::fabs(v[i].y) > kMaxCoordinate)
+            throw Error("hwsim: vertex (" + std::to_string(v[i].x) + ", " + std::to_string(v[i].y) +
+                        ") outside the rasterizer's range of +-" + std::to_string(int(kMaxCoordinate)) + " pixels");
+    }
     std::int64_t X[3], Y[3];
     for (int i = 0; i < 3; ++i) X[i] = snap(v[i].x), Y[i] = snap(v[i].y);
     const std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);

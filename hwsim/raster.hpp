@@ -20,6 +20,9 @@ enum class FillRule : std::uint8_t { TopLeft, TopRight, BottomLeft, BottomRight 
 
 constexpr int kSubpixelBits = 8;
 constexpr std::int64_t kSubpixel = 1 << kSubpixelBits;
+// Window coordinates beyond this are refused (GL would have clipped them):
+// edge functions of snapped coordinates then stay far inside 64 bits.
+constexpr float kMaxCoordinate = 1 << 20;
 
 // Up to four edges E(px, py) = a*px + b*py + c over sub-pixel coordinates;
 // a pixel centre is inside when every E > 0, or E == 0 on an owning edge.
