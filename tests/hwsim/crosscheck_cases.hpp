@@ -79,6 +79,10 @@ inline std::vector<Case> cases() {
     for (int y = 0; y < 32; ++y) stipple2.stipple.rows[y] = 0x9e3779b9u * std::uint32_t(y + 1);
     all.push_back({"stipple", 1, 0, {{stipple, rect(0, 0, 64, 64, 0.5f)}, {stipple2, edgy}}});
 
+    PipelineState stippleDepth = depthState(CompareFunc::Less, true);
+    stippleDepth.stipple = {true, StippleState::interleaved(2, 0, 1)};
+    all.push_back({"stipple_depth", 0.5f, 0, {{stippleDepth, rect(0, 0, 64, 64, 0.75f) + rect(0, 0, 32, 32, 0.25f)}}});
+
     PipelineState scissor;
     scissor.scissor = {true, 5, 7, 20, 13};
     all.push_back({"scissor", 1, 0, {{scissor, rect(0, 0, 64, 64, 0.5f) + edgy}}});

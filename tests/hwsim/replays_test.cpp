@@ -108,5 +108,16 @@ TEST(HwsimCli, ListsProfilesAndWritesStats) {
     EXPECT_NE(badKey.output.find("n"), std::string::npos);
 }
 
+TEST(HwsimCli, MissingFeatureFailsClearlyWithoutOutputs) {
+    test::TempDir dir;
+    const test::CommandResult r = test::runWeft("hwsim kraus.fig4 --profile mesa-llvmpipe --set oracle=minimum --stats " +
+                                                (dir / "s.json").string() + " -o " + (dir / "i.exr").string());
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("kraus.fig4 needs the depth bounds test"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("'mesa-llvmpipe'"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "s.json"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "i.exr"));
+}
+
 }  // namespace
 }  // namespace weft::hwsim
