@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <sstream>
 
@@ -23,7 +24,10 @@ struct DriverRun {
 };
 
 DriverRun runDriver(const std::string& driver) {
-    const std::string cmd = "env GALLIUM_DRIVER=" + driver + " LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless " +
+    // Mesa's EGL vendor even where another vendor (a GPU driver) is installed.
+    const char* mesaVendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
+    const std::string vendor = std::filesystem::exists(mesaVendor) ? std::string(" __EGL_VENDOR_LIBRARY_FILENAMES=") + mesaVendor : "";
+    const std::string cmd = "env GALLIUM_DRIVER=" + driver + " LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless" + vendor + " " +
                             std::string(WEFT_MESA_CHECK) + " 2>&1";
     DriverRun run;
     FILE* pipe = popen(cmd.c_str(), "r");
@@ -86,6 +90,7 @@ Counts runOnHwsim(const Case& c, const Profile& profile) {
 void crossCheck(const std::string& driver, const std::string& profileName) {
     const DriverRun run = runDriver(driver);
     ASSERT_EQ(run.status, 0) << "weft_mesa_check could not run on " << driver << ":\n" << run.output;
+    ASSERT_NE(run.output.find("RENDERER " + driver), std::string::npos) << "not Mesa's " << driver << ":\n" << run.output;
     const std::map<std::string, Counts> gl = parse(run.output);
     const Profile& profile = findProfile(profileName);
     int compared = 0;
