@@ -78,6 +78,7 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.coarseTile = pr.coarseTile;
 
     p.countEarly = t.earlyFragmentTests && pr.queryCountsAtEarlyTests;
+    p.emptyQuadsRun = pr.emptyQuadsStillRun && p.zsEarly && p.stencil;
     p.quad = pr.shading == ShadingGranularity::Quad;
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH;
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});

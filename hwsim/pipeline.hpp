@@ -74,7 +74,8 @@ struct DrawPlan {
     bool depthWrites = false, stencilWrites = false, writesDepth = false;
     bool coarse = false, coarseDepth = false, coarseStencil = false, coarseBounds = false;
     bool quad = false;
-    bool countEarly = false;  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
+    bool countEarly = false;
+    bool emptyQuadsRun = false;  // quads emptied by early tests still run (profile quirk)  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
     int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
 };
 
@@ -91,7 +92,9 @@ public:
 
     template <class Program>
     void drawTriangle(const Vertex (&v)[3], Program&& program, ProgramTraits traits = {}) {
-        draw(setupTriangle(v, profile_.fillRule, fb_.width, fb_.height), program, traits);
+        draw(profile_.floatSpans ? setupTriangleSpans(v, fb_.width, fb_.height, spans_)
+                                 : setupTriangle(v, profile_.fillRule, fb_.width, fb_.height),
+             program, traits);
     }
     // GL_QUADS: the triangles (0, 1, 2) and (0, 2, 3).
     template <class Program>
@@ -176,6 +179,7 @@ private:
     bool coarseLost_ = false;
     bool frameBoundsSet_ = false, boundsLost_ = false;
     float frameBounds_[2] = {0, 0};
+    SpanRows spans_;  // reused by every float-span triangle
 };
 
 }  // namespace weft::hwsim

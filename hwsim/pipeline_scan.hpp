@@ -31,7 +31,7 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
     const int x1 = std::min(tx0 + p.tileW, s.x1), y1 = std::min(ty0 + p.tileH, s.y1);
     const int qw = p.tileW / 2;
     std::array<std::uint8_t, 32 * 32> masks;  // tiles are at most 64 x 64
-    const TileCoverage coverage = classifyTile(s.edges, tx0, ty0, tx0 + p.tileW, ty0 + p.tileH);
+    const TileCoverage coverage = s.spans ? TileCoverage::Partial : classifyTile(s.edges, tx0, ty0, tx0 + p.tileW, ty0 + p.tileH);
     if (coverage == TileCoverage::None) return;
     int live = 0;
     for (int qy = ty0; qy < y1; qy += 2)
@@ -39,7 +39,7 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
             unsigned m = inBoxMask(qx, qy, x0, y0, x1, y1);
             if (coverage == TileCoverage::Partial)
                 for (int lane = 0; lane < 4; ++lane)
-                    if ((m >> lane & 1u) && !s.edges.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
+                    if ((m >> lane & 1u) && !s.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
             c.generated += std::popcount(m);
             if (m && p.stipple && !p.stippleLate) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
             if (m && p.scissor) m = keep(m, inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
@@ -78,7 +78,10 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         if (fail != Stage::Count) ++c.rejected[int(fail)], mask &= ~(1u << lane);
         else if (p.countEarly) ++c.samplesPassed;
     }
-    if (!mask) return;
+    if (!mask) {
+        if (p.emptyQuadsRun) c.invocations += 4;  // the program runs, its results are dropped
+        return;
+    }
     FragmentOutput out[4];
     const unsigned shaded = p.quad ? 0xFu : mask;
     for (int lane = 0; lane < 4; ++lane) {

@@ -39,6 +39,22 @@ TEST(HwsimRaster, CentresOnEdgesFollowTheFillRule) {
     EXPECT_EQ(coveredBy(cw, FillRule::TopLeft), 6);
 }
 
+// Softpipe's float spans on the same triangle: bottom leg and hypotenuse
+// (a right edge) in, the left leg out — as Mesa's softpipe draws it.
+TEST(HwsimRaster, FloatSpansMatchSoftpipesRule) {
+    const Vertex tri[3] = {{0.5f, 0.5f, 0}, {4.5f, 0.5f, 0}, {0.5f, 4.5f, 0}};
+    SpanRows rows;
+    const PrimitiveSetup s = setupTriangleSpans(tri, 8, 8, rows);
+    int covered = 0;
+    for (int y = s.y0; y < s.y1; ++y)
+        for (int x = s.x0; x < s.x1; ++x) covered += s.covers(x, y);
+    EXPECT_EQ(covered, 10);
+    EXPECT_FALSE(s.covers(0, 1));
+    EXPECT_TRUE(s.covers(4, 0));
+    EXPECT_TRUE(s.covers(1, 3));
+    EXPECT_FALSE(s.covers(1, 4));
+}
+
 TEST(HwsimRaster, SharedEdgesCoverEveryPixelOnce) {
     // A 6x4 quad whose diagonal passes through pixel centres.
     const Vertex q[4] = {{1, 1, 0}, {7, 1, 0}, {7, 5, 0}, {1, 5, 0}};

@@ -84,10 +84,12 @@ Profile readProfile(Reader& r) {
     p.sources = r.text("sources");
     p.fillRule = r.choice<FillRule>("fill_rule", {{"top_left", FillRule::TopLeft}, {"top_right", FillRule::TopRight},
                                                    {"bottom_left", FillRule::BottomLeft}, {"bottom_right", FillRule::BottomRight}});
+    p.floatSpans = r.choice<bool>("scan", {{"edge_functions", false}, {"float_spans", true}});
     p.stipple = r.choice<StipplePosition>("stipple", {{"rasterizer", StipplePosition::Rasterizer}, {"late", StipplePosition::Late}});
     p.polygonStipple = r.flag("polygon_stipple");
     p.stippleDisablesEarly = r.flag("stipple_disables_early_tests");
     p.earlyNeedsDepthTest = r.flag("early_tests_need_depth_test");
+    p.emptyQuadsStillRun = r.flag("early_rejected_quads_still_run");
     p.earlyTests = r.choice<EarlyTests>(
         "early_tests", {{"per_pixel", EarlyTests::PerPixel}, {"coarse_only", EarlyTests::CoarseOnly}, {"none", EarlyTests::None}});
     p.coarseTile = r.power2("coarse_tile", 0, 64);

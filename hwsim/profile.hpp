@@ -22,6 +22,7 @@ struct Profile {
     std::string description;
     std::string sources;  // where the behaviour is documented or reported
     FillRule fillRule = FillRule::TopLeft;  // who owns centres exactly on an edge
+    bool floatSpans = false;               // scan triangles as softpipe does (float spans), not by edge functions
     StipplePosition stipple = StipplePosition::Rasterizer;
     EarlyTests earlyTests = EarlyTests::PerPixel;
     int coarseTile = 0;                 // hierarchical Z/stencil tile side (pixels), 0: none
@@ -32,7 +33,8 @@ struct Profile {
     DiscardRule discardForcesLate = DiscardRule::Never;  // otherwise: test early, write after the program
     bool sideEffectsForceLate = true;   // programs with memory side effects run before the tests (GL rule)
     bool stippleDisablesEarly = false;
-    bool earlyNeedsDepthTest = false;  // no early tests (stencil, bounds) unless the depth test is on
+    bool earlyNeedsDepthTest = false;
+    bool emptyQuadsStillRun = false;   // a quad whose lanes all failed the early tests still runs the program (4 lanes counted)  // no early tests (stencil, bounds) unless the depth test is on
     bool queryCountsAtEarlyTests = true;  // with early_fragment_tests, SAMPLES_PASSED counts before a discard (GL spec)  // stipple implemented as a discard inserted into the program
     ShadingGranularity shading = ShadingGranularity::Pixel;
     int branchBlockW = 1, branchBlockH = 1;  // pixels executing one program in lock step (dynamic branching)

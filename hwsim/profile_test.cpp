@@ -28,8 +28,8 @@ std::string errorOf(const std::string& text) {
 TEST(HwsimProfile, BadFilesNameKeyAndValidValues) {
     EXPECT_NE(errorOf("{").find("p.json"), std::string::npos);
     EXPECT_NE(errorOf("{\"name\": \"x\"}").find("missing key 'description'"), std::string::npos);
-    const std::string base = R"({"name":"x","description":"d","sources":"s","fill_rule":"top_left","stipple":"rasterizer",
-      "polygon_stipple":true,"stipple_disables_early_tests":false,"early_tests":"per_pixel","early_tests_need_depth_test":false,"coarse_tile":0,
+    const std::string base = R"({"name":"x","description":"d","sources":"s","fill_rule":"top_left","scan":"edge_functions","stipple":"rasterizer",
+      "polygon_stipple":true,"stipple_disables_early_tests":false,"early_tests":"per_pixel","early_tests_need_depth_test":false,"early_rejected_quads_still_run":false,"coarse_tile":0,
       "coarse_stencil":false,"depth_bounds":"early","bounds_change_forces_late":false,
       "depth_direction_change_disables_coarse":false,"discard_forces_late":"never","side_effects_force_late":true,"query_counts_at_early_tests":true,
       "shading":"pixel","branch_block":[1,1])";

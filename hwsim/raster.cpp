@@ -70,6 +70,80 @@ PrimitiveSetup setupTriangle(const Vertex v[3], FillRule rule, int width, int he
     return s;
 }
 
+namespace {
+
+struct ScanEdge {
+    float dx, dy, dxdy, sx, sy;
+    int lines;
+};
+
+ScanEdge scanEdge(const Vertex& from, const Vertex& to, float fromX, float fromY, float toY) {
+    ScanEdge e;
+    e.dx = to.x - from.x;
+    e.dy = to.y - from.y;
+    e.sy = std::ceil(fromY);
+    e.lines = int(std::ceil(toY - e.sy));
+    e.dxdy = e.dy != 0.0f ? e.dx / e.dy : 0.0f;
+    e.sx = fromX + (e.sy - fromY) * e.dxdy;
+    return e;
+}
+
+// The rows of one half of the triangle between two edges, clipped to the target.
+void scanHalf(ScanEdge& left, ScanEdge& right, int lines, int width, int height, SpanRows& rows) {
+    const int sy = int(left.sy);
+    const int start = std::max(sy, 0) - sy, finish = std::min(sy + lines, height) - sy;
+    for (int y = start; y < finish; ++y) {
+        const int l = std::max(int(left.sx + float(y) * left.dxdy), 0);
+        const int r = std::min(int(right.sx + float(y) * right.dxdy), width);
+        const std::size_t row = std::size_t(sy + y - rows.y0);
+        if (l < r && row < rows.left.size()) rows.left[row] = l, rows.right[row] = r;
+    }
+    left.sx += float(lines) * left.dxdy, right.sx += float(lines) * right.dxdy;
+    left.sy += float(lines), right.sy += float(lines);
+}
+
+// Indices of the vertices from bottom to top, ties kept in softpipe's order.
+void sortByY(const Vertex v[3], int& lo, int& mid, int& hi) {
+    const float y0 = v[0].y, y1 = v[1].y, y2 = v[2].y;
+    if (y0 <= y1) {
+        if (y1 <= y2) lo = 0, mid = 1, hi = 2;
+        else if (y2 <= y0) lo = 2, mid = 0, hi = 1;
+        else lo = 0, mid = 2, hi = 1;
+    } else {
+        if (y0 <= y2) lo = 1, mid = 0, hi = 2;
+        else if (y2 <= y1) lo = 2, mid = 1, hi = 0;
+        else lo = 1, mid = 2, hi = 0;
+    }
+}
+
+}  // namespace
+
+PrimitiveSetup setupTriangleSpans(const Vertex v[3], int width, int height, SpanRows& rows) {
+    PrimitiveSetup s = setupTriangle(v, FillRule::BottomRight, width, height);  // validation and depth plane
+    rows.reset(0, height);
+    s.spans = &rows;
+    if (s.empty()) return s;
+    int lo, mid, hi;
+    sortByY(v, lo, mid, hi);
+    const Vertex &a = v[lo], &b = v[mid], &c = v[hi];
+    const float area = (c.x - a.x) * (b.y - a.y) - (b.x - a.x) * (c.y - a.y);
+    if (!std::isfinite(1.0f / area)) return s.x1 = s.x0, s;
+    const float ax = a.x + 0.5f, bx = b.x + 0.5f, ay = a.y - 0.5f, by = b.y - 0.5f, cy = c.y - 0.5f;
+    ScanEdge major = scanEdge(a, c, ax, ay, cy), bottom = scanEdge(a, b, ax, ay, by), top = scanEdge(b, c, bx, by, cy);
+    if (1.0f / area < 0) {
+        scanHalf(major, bottom, bottom.lines, width, height, rows);
+        scanHalf(major, top, top.lines, width, height, rows);
+    } else {
+        scanHalf(bottom, major, bottom.lines, width, height, rows);
+        scanHalf(top, major, top.lines, width, height, rows);
+    }
+    s.x0 = width, s.x1 = 0, s.y0 = height, s.y1 = 0;  // the box of the spans
+    for (int y = 0; y < height; ++y)
+        if (rows.left[y] < rows.right[y])
+            s.x0 = std::min(s.x0, rows.left[y]), s.x1 = std::max(s.x1, rows.right[y]), s.y0 = std::min(s.y0, y), s.y1 = y + 1;
+    return s;
+}
+
 PrimitiveSetup setupRect(int x0, int y0, int x1, int y1, float z, int width, int height) {
     PrimitiveSetup s;
     s.x0 = std::max(0, x0), s.y0 = std::max(0, y0), s.x1 = std::min(width, x1), s.y1 = std::min(height, y1);

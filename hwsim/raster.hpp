@@ -6,6 +6,7 @@
 // primitive only on the edges the fill rule names (GL lets the
 // implementation choose; profiles say which).
 #include <cstdint>
+#include <vector>
 
 namespace weft::hwsim {
 
@@ -59,11 +60,29 @@ inline TileCoverage classifyTile(const EdgeSet& e, int x0, int y0, int x1, int y
     return full ? TileCoverage::Full : TileCoverage::Partial;
 }
 
+// Per-row coverage [left, right) of a primitive scanned as spans (the
+// float scanline mode of Mesa's softpipe), rows y0 .. y0 + left.size() - 1.
+struct SpanRows {
+    int y0 = 0;
+    std::vector<int> left, right;
+    void reset(int firstRow, int rows) {
+        y0 = firstRow;
+        left.assign(std::size_t(rows), 0);
+        right.assign(std::size_t(rows), 0);
+    }
+};
+
 // A primitive ready to scan: its edges, the pixel bounding box clipped to
 // the target (x1, y1 exclusive), and its depth plane z = z0 + dzdx*cx + dzdy*cy
 // at pixel centres (cx, cy).
 struct PrimitiveSetup {
     EdgeSet edges;
+    const SpanRows* spans = nullptr;  // when set, coverage comes from the spans instead of the edges
+    bool covers(int x, int y) const {
+        if (!spans) return edges.covers(x, y);
+        const std::size_t row = std::size_t(y - spans->y0);
+        return row < spans->left.size() && x >= spans->left[row] && x < spans->right[row];
+    }
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     double z0 = 0, dzdx = 0, dzdy = 0;
     bool empty() const { return x0 >= x1 || y0 >= y1; }
@@ -72,6 +91,13 @@ struct PrimitiveSetup {
 
 // A triangle (either winding; zero area covers nothing) inside a width x height target.
 PrimitiveSetup setupTriangle(const Vertex v[3], FillRule rule, int width, int height);
+// The same triangle scanned the way Mesa's softpipe scans it: pixel centres
+// shifted to integers, rows from ceil(y_min) to ceil(y_max) (bottom edge in,
+// top out), and per row the pixels from trunc(x_left) to trunc(x_right)
+// (right edge in, left out), edge positions stepped in single precision
+// from the vertices sorted by y — so centres within rounding of an edge fall
+// as softpipe's float arithmetic puts them. `rows` receives the spans.
+PrimitiveSetup setupTriangleSpans(const Vertex v[3], int width, int height, SpanRows& rows);
 // A screen-aligned rectangle [x0, x1) x [y0, y1) at constant depth, scanned as
 // one primitive (as a viewport-covering triangle clipped to it would be).
 PrimitiveSetup setupRect(int x0, int y0, int x1, int y1, float z, int width, int height);

@@ -3,6 +3,7 @@
 // separate program so that each Gallium driver runs in its own process) and
 // by hwsim (mesa_crosscheck_test.cpp), whose counts must agree exactly.
 // Header-only: the GL program links no weft library.
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -37,6 +38,7 @@ struct Case {
     std::uint8_t clearStencil = 0;
     std::vector<Pass> passes;
     bool needsBounds = false;
+    bool slopedEdges = false;  // random triangles (softpipe's scanline snapping differs there)
 };
 
 // What both sides report for a case.
@@ -118,6 +120,80 @@ inline std::vector<Case> cases() {
                                    {bounds, rect(0, 0, 64, 64, 0.9f)}}};
     b.needsBounds = true;
     all.push_back(b);
+    return all;
+}
+
+// Deterministic random pass lists: every state combination the cases above
+// do not spell out. Vertices on a quarter-pixel grid, constant depth per
+// triangle in eighths (exact on both sides).
+class CaseRandom {
+public:
+    explicit CaseRandom(std::uint64_t seed) : state_(seed) {}
+    std::uint32_t next(std::uint32_t n) {
+        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return std::uint32_t((z ^ (z >> 31)) % n);
+    }
+    bool chance(std::uint32_t percent) { return next(100) < percent; }
+
+private:
+    std::uint64_t state_;
+};
+
+inline Pass randomPass(CaseRandom& r, bool& needsBounds, bool sloped) {
+    Pass p;
+    PipelineState& s = p.state;
+    if (r.chance(50)) {
+        const std::uint8_t masks[] = {0xff, 0x0f, 0x03, 0x00};
+        s.stencil = {true, CompareFunc(r.next(8)), std::uint8_t(r.next(8)), masks[r.next(3)], masks[r.next(4)],
+                     StencilOp(r.next(8)), StencilOp(r.next(8)), StencilOp(r.next(8))};
+    }
+    if (r.chance(70)) s.depth = {true, CompareFunc(r.next(8)), r.chance(60)};
+    if (r.chance(20)) s.scissor = {true, int(r.next(40)), int(r.next(40)), int(r.next(40)), int(r.next(40))};
+    if (r.chance(20)) {
+        s.stipple.enabled = true;
+        for (auto& row : s.stipple.rows) row = r.next(0xffffffffu) | (r.next(2) << 31);
+    }
+    if (r.chance(15)) {
+        const float a = float(r.next(9)) / 8, b = float(r.next(9)) / 8;
+        s.bounds = {true, std::min(a, b), std::max(a, b)};
+        needsBounds = true;
+    }
+    p.program = ProgramKind(r.next(3));
+    p.earlyFragmentTests = p.program != ProgramKind::WriteDepth && r.chance(25);
+    const int primitives = 1 + int(r.next(3));
+    for (int t = 0; t < primitives; ++t) {
+        const float z = float(r.next(9)) / 8;
+        auto coordinate = [&] { return float(r.next(257)) / 4; };  // inside the target: no clipping
+        if (sloped)
+            for (int v = 0; v < 3; ++v) p.triangles.push_back({coordinate(), coordinate(), z});
+        else {
+            const float x0 = coordinate(), y0 = coordinate(), x1 = coordinate(), y1 = coordinate();
+            for (const Vertex& v : rect(std::min(x0, x1), std::min(y0, y1), std::max(x0, x1), std::max(y0, y1), z)) p.triangles.push_back(v);
+        }
+    }
+    return p;
+}
+
+// Random triangles (sloped) or axis-aligned rectangles (two triangles each).
+inline std::vector<Case> randomCases(int count, std::uint64_t seed, bool sloped) {
+    CaseRandom r(seed);
+    std::vector<Case> all;
+    for (int i = 0; i < count; ++i) {
+        Case c{std::string(sloped ? "random_tri_" : "random_rect_") + std::to_string(i), float(r.next(9)) / 8, std::uint8_t(r.next(8))};
+        c.slopedEdges = sloped;
+        const int passes = 1 + int(r.next(3));
+        for (int k = 0; k < passes; ++k) c.passes.push_back(randomPass(r, c.needsBounds, sloped));
+        all.push_back(std::move(c));
+    }
+    return all;
+}
+
+inline std::vector<Case> allCases() {
+    std::vector<Case> all = cases();
+    for (Case& c : randomCases(60, 2024, true)) all.push_back(std::move(c));
+    for (Case& c : randomCases(60, 2025, false)) all.push_back(std::move(c));
     return all;
 }
 
