@@ -69,6 +69,13 @@ struct PipelineState {
     std::array<bool, 4> colorMask{true, true, true, true};
 };
 
+// Set lanes of a 2x2 quad mask (4 bits); a table, as the baseline x86-64
+// target has no popcount instruction and std::popcount becomes a call.
+inline int lanes(unsigned mask4) {
+    constexpr int bits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+    return bits[mask4 & 15u];
+}
+
 // GL comparison "incoming func stored".
 inline bool compare(CompareFunc f, float a, float b) {
     switch (f) {

@@ -139,7 +139,7 @@ void Pipeline::cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int t
             int live = 0;
             const int qy1 = std::min(cy + ct, y1), qx1 = std::min(cx + ct, x1);  // masks beyond are unset
             for (int qy = cy; qy < qy1; qy += 2)
-                for (int qx = cx; qx < qx1; qx += 2) live += std::popcount(unsigned(masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2]));
+                for (int qx = cx; qx < qx1; qx += 2) live += lanes((masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2]));
             Stage stage;
             if (live == 0 || !coarseReject(s, p, cx, cy, cx + ct, cy + ct, stage)) continue;
             c.rejected[int(stage)] += live;

@@ -158,7 +158,7 @@ private:
     }
     // The kept lanes of mask; adds the dropped ones to a rejection count.
     static unsigned keep(unsigned mask, unsigned kept, std::int64_t& rejected) {
-        rejected += std::popcount(mask & ~kept);
+        rejected += lanes(mask & ~kept);
         return mask & kept;
     }
     bool scissorKeeps(int x, int y) const {

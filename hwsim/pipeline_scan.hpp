@@ -40,12 +40,12 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
             if (coverage == TileCoverage::Partial)
                 for (int lane = 0; lane < 4; ++lane)
                     if ((m >> lane & 1u) && !s.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
-            c.generated += std::popcount(m);
+            c.generated += lanes(m);
             if (m && p.stipple && !p.stippleLate) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
             if (m && p.scissor) m = keep(m, inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
                                                       state.scissor.y + state.scissor.height), c.rejected[int(Stage::Scissor)]);
             masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m);
-            live += std::popcount(m);
+            live += lanes(m);
         }
     if (live == 0) return;
     if (p.coarse) cullCoarseTiles(s, p, tx0, ty0, y1, x1, masks.data(), c);

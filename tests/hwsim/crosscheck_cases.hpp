@@ -181,7 +181,7 @@ inline std::vector<Case> randomCases(int count, std::uint64_t seed, bool sloped)
     CaseRandom r(seed);
     std::vector<Case> all;
     for (int i = 0; i < count; ++i) {
-        Case c{std::string(sloped ? "random_tri_" : "random_rect_") + std::to_string(i), float(r.next(9)) / 8, std::uint8_t(r.next(8))};
+        Case c{std::string(sloped ? "random_tri_" : "random_rect_") + std::to_string(i), float(r.next(9)) / 8, std::uint8_t(r.next(8)), {}};
         c.slopedEdges = sloped;
         const int passes = 1 + int(r.next(3));
         for (int k = 0; k < passes; ++k) c.passes.push_back(randomPass(r, c.needsBounds, sloped));
