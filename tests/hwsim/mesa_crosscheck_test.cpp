@@ -102,6 +102,7 @@ void crossCheck(const std::string& driver, const std::string& profileName, bool 
     const std::map<std::string, Counts> gl = parse(run.output);
     const Profile& profile = findProfile(profileName);
     int compared = 0, randomCases = 0, randomMatches = 0;
+    std::string differing;
     for (const Case& c : allCases()) {
         if (c.needsBounds && profile.bounds == BoundsSupport::Unsupported) {
             EXPECT_THROW(runOnHwsim(c, profile), Error) << c.name;  // the profile refuses what the driver lacks
@@ -114,6 +115,7 @@ void crossCheck(const std::string& driver, const std::string& profileName, bool 
         const bool random = c.name.rfind("random_", 0) == 0;
         if (random && !exactRandom) {
             randomCases += 1, randomMatches += equal(h, g);
+            if (!equal(h, g)) differing += " " + c.name;
             continue;
         }
         EXPECT_EQ(h.samplesPassed, g.samplesPassed) << driver << " " << c.name << " SAMPLES_PASSED";
@@ -124,7 +126,8 @@ void crossCheck(const std::string& driver, const std::string& profileName, bool 
     }
     EXPECT_GE(compared, exactRandom ? 100 : 14);
     if (!exactRandom) {
-        std::printf("%s: %d of %d random pass lists match exactly\n", driver.c_str(), randomMatches, randomCases);
+        std::printf("%s: %d of %d random pass lists match exactly; differing:%s\n", driver.c_str(), randomMatches, randomCases,
+                    differing.c_str());
         EXPECT_GE(randomMatches, minRandomMatches);
     }
 }
