@@ -80,6 +80,8 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.countEarly = t.earlyFragmentTests && pr.queryCountsAtEarlyTests;
     p.emptyQuadsRun = pr.emptyQuadsStillRun && p.zsEarly && p.stencil;
     p.quad = pr.shading == ShadingGranularity::Quad;
+    p.simple = !p.quad && pr.branchBlockW * pr.branchBlockH == 1 && !p.stencil && !p.bounds && !p.stippleLate &&
+               !p.deferWrites && !p.countEarly && !t.writesDepth && (!p.depth || p.zsEarly);
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH;
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});
     p.tileH = std::max({16, pr.coarseTile, pr.branchBlockH});

@@ -75,7 +75,8 @@ struct DrawPlan {
     bool coarse = false, coarseDepth = false, coarseStencil = false, coarseBounds = false;
     bool quad = false;
     bool countEarly = false;
-    bool emptyQuadsRun = false;  // quads emptied by early tests still run (profile quirk)  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
+    bool emptyQuadsRun = false;  // quads emptied by early tests still run (profile quirk)
+    bool simple = false;  // per-pixel programs, at most an early depth test: the short path  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
     int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
 };
 
@@ -127,6 +128,9 @@ private:
     void scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, StageCounts& c) const;
     void cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int y1, int x1,
                          std::uint8_t* masks, StageCounts& c) const;
+    template <class Program>
+    void shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                     StageCounts& c) const;
     template <class Program>
     void shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
                    StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const;

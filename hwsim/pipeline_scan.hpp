@@ -55,10 +55,39 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
     if (lockStep) std::fill_n(blockMax.begin(), blocks, 0), std::fill_n(blockLanes.begin(), blocks, 0);
     for (int qy = ty0; qy < y1; qy += 2)
         for (int qx = tx0; qx < x1; qx += 2)
-            if (const unsigned m = masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2])
+            if (const unsigned m = masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2]; m && p.simple)
+                shadePixels(s, program, p, qx, qy, m, c);
+            else if (m)
                 shadeQuad(s, program, p, qx, qy, m, c, lockStep ? blockMax.data() : nullptr, blockLanes.data(), tx0, ty0);
     if (lockStep)
         for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * blockLanes[b];
+}
+
+// The short path (DrawPlan::simple): each live pixel through an optional
+// early depth test, the program and the write.
+template <class Program>
+void Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                           StageCounts& c) const {
+    const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(mask >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const std::size_t idx = fb_.index(x, y);
+        const float z = s.depthAt(x, y);
+        if (p.depth) {
+            if (!compare(state.depth.func, z, fb_.depth[idx])) { ++c.rejected[int(Stage::DepthEarly)]; continue; }
+            if (p.depthWrites) fb_.depth[idx] = z;
+        }
+        FragmentOutput o;
+        program(Fragment{x, y, z, false}, o);
+        ++c.invocations;
+        c.cost += o.cost;
+        if (o.discard) { ++c.discarded; continue; }
+        ++c.samplesPassed;
+        if (colorWritten) writeColor(idx, o.color);
+        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, z, false}, o);
+        c.pixelsWritten += colorWritten || p.depthWrites;
+    }
 }
 
 // One 2x2 quad whose covered lanes passed the rasterizer's tests (mask).
