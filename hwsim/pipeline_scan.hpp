@@ -96,6 +96,7 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
                          StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const {
     Pending pending[4];
     float z[4];
+    bool noBoundsFailure = true;
     for (int lane = 0; lane < 4; ++lane) {
         if (!(mask >> lane & 1u)) continue;
         const int x = qx + (lane & 1), y = qy + (lane >> 1);
@@ -104,11 +105,11 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         Stage fail = Stage::Count;
         if (p.boundsEarly && !inBounds(idx)) fail = Stage::Bounds;
         else if (p.zsEarly) fail = stencilDepth(idx, z[lane], p, true, p.deferWrites ? &pending[lane] : nullptr);
-        if (fail != Stage::Count) ++c.rejected[int(fail)], mask &= ~(1u << lane);
+        if (fail != Stage::Count) ++c.rejected[int(fail)], mask &= ~(1u << lane), noBoundsFailure &= fail != Stage::Bounds;
         else if (p.countEarly) ++c.samplesPassed;
     }
     if (!mask) {
-        if (p.emptyQuadsRun) c.invocations += 4;  // the program runs, its results are dropped
+        if (p.emptyQuadsRun && noBoundsFailure) c.invocations += 4;  // the program runs, its results are dropped
         return;
     }
     FragmentOutput out[4];

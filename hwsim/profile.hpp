@@ -34,7 +34,7 @@ struct Profile {
     bool sideEffectsForceLate = true;   // programs with memory side effects run before the tests (GL rule)
     bool stippleDisablesEarly = false;
     bool earlyNeedsDepthTest = false;
-    bool emptyQuadsStillRun = false;   // a quad whose lanes all failed the early tests still runs the program (4 lanes counted)  // no early tests (stencil, bounds) unless the depth test is on
+    bool emptyQuadsStillRun = false;   // with stencil on, a quad emptied by early stencil/depth still runs (4 lanes counted)  // no early tests (stencil, bounds) unless the depth test is on
     bool queryCountsAtEarlyTests = true;  // with early_fragment_tests, SAMPLES_PASSED counts before a discard (GL spec)  // stipple implemented as a discard inserted into the program
     ShadingGranularity shading = ShadingGranularity::Pixel;
     int branchBlockW = 1, branchBlockH = 1;  // pixels executing one program in lock step (dynamic branching)
