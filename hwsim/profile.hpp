@@ -32,10 +32,10 @@ struct Profile {
     bool directionChangeDisablesCoarse = false;  // LESS <-> GREATER within a frame loses coarse culling until a clear
     DiscardRule discardForcesLate = DiscardRule::Never;  // otherwise: test early, write after the program
     bool sideEffectsForceLate = true;   // programs with memory side effects run before the tests (GL rule)
-    bool stippleDisablesEarly = false;
-    bool earlyNeedsDepthTest = false;
-    bool emptyQuadsStillRun = false;   // with stencil on, a quad emptied by early stencil/depth still runs (4 lanes counted)  // no early tests (stencil, bounds) unless the depth test is on
-    bool queryCountsAtEarlyTests = true;  // with early_fragment_tests, SAMPLES_PASSED counts before a discard (GL spec)  // stipple implemented as a discard inserted into the program
+    bool stippleDisablesEarly = false;   // stipple implemented as a discard inserted into the program
+    bool earlyNeedsDepthTest = false;    // no early tests (stencil, bounds) unless the depth test is on
+    bool emptyQuadsStillRun = false;     // with stencil on, a quad emptied by early stencil/depth still runs (4 lanes counted)
+    bool queryCountsAtEarlyTests = true; // with early_fragment_tests, SAMPLES_PASSED counts before a discard (GL spec)
     ShadingGranularity shading = ShadingGranularity::Pixel;
     int branchBlockW = 1, branchBlockH = 1;  // pixels executing one program in lock step (dynamic branching)
     bool polygonStipple = true;               // feature present
