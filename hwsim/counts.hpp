@@ -5,7 +5,7 @@
 //   fragments.rejected.<stage>       stipple, scissor, bounds, stencil, depth_early, depth_late
 //   fragments.discarded              killed by the fragment program
 //   fragment_program.invocations     program runs, helper invocations of 2x2 quads included
-//   fragment_program.helpers         of those, helper invocations
+//   fragment_program.helpers         of those, runs whose results are dropped (quad helpers, stipple kills)
 //   fragment_program.cost            lock-step cost: per branch block, lanes x the longest path
 //   samples.passed                   what a SAMPLES_PASSED query counts
 //   pixels.written                   passed fragments that write colour (any channel enabled) or depth

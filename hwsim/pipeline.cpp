@@ -36,7 +36,9 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     DrawPlan p;
     p.stipple = state.stipple.enabled;
     if (p.stipple) pr.require(pr.polygonStipple, "polygon stipple", "this pass");
+    p.stippleStart = p.stipple && pr.stipple == StipplePosition::ProgramStart;
     p.stippleLate = p.stipple && pr.stipple == StipplePosition::Late;
+    p.stippleMirrored = pr.stippleMirroredWithPosition && t.readsPosition;
     p.scissor = state.scissor.enabled;
     p.bounds = state.bounds.enabled;
     if (p.bounds) {
@@ -56,7 +58,7 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.stencilWrites = writesStencil(state.stencil);
     p.writesDepth = t.writesDepth;
 
-    const bool mayKill = t.mayDiscard || p.stippleLate || (p.stipple && pr.stippleDisablesEarly);
+    const bool mayKill = t.mayDiscard || p.stippleLate || p.stippleStart;
     const bool late = !t.earlyFragmentTests &&
                       (t.writesDepth || (t.sideEffects && pr.sideEffectsForceLate) ||
                        (mayKill && discardForcesLate(pr.discardForcesLate, p.depthWrites, p.stencilWrites)));
@@ -80,7 +82,7 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.countEarly = t.earlyFragmentTests && pr.queryCountsAtEarlyTests;
     p.emptyQuadsRun = pr.emptyQuadsStillRun && p.zsEarly && p.stencil;
     p.quad = pr.shading == ShadingGranularity::Quad;
-    p.simple = !p.quad && pr.branchBlockW * pr.branchBlockH == 1 && !p.stencil && !p.bounds && !p.stippleLate &&
+    p.simple = !p.quad && pr.branchBlockW * pr.branchBlockH == 1 && !p.stencil && !p.bounds && !p.stippleLate && !p.stippleStart &&
                !p.deferWrites && !p.countEarly && !t.writesDepth && (!p.depth || p.zsEarly);
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH;
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});

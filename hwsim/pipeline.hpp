@@ -34,6 +34,7 @@ struct ProgramTraits {
     bool mayDiscard = false;          // discard / kill
     bool sideEffects = false;         // image, buffer or atomic-counter writes
     bool earlyFragmentTests = false;  // layout(early_fragment_tests)
+    bool readsPosition = false;       // gl_FragCoord (matters only to a profile quirk)
 };
 
 struct Fragment {
@@ -68,7 +69,7 @@ ProgramWithWrites<Shade, Write> withWrites(Shade shade, Write write) {
 // Where each stage runs for one draw; made once per draw from the state,
 // the profile and the program's traits.
 struct DrawPlan {
-    bool stipple = false, stippleLate = false, scissor = false;
+    bool stipple = false, stippleStart = false, stippleLate = false, stippleMirrored = false, scissor = false;
     bool bounds = false, boundsEarly = false;
     bool stencil = false, depth = false, zsEarly = false, zsLate = false, deferWrites = false;
     bool depthWrites = false, stencilWrites = false, writesDepth = false;
@@ -149,6 +150,7 @@ private:
         return d >= state.bounds.zmin && d <= state.bounds.zmax;
     }
     bool stippleKeeps(int x, int y) const { return (state.stipple.rows[y & 31] >> (x & 31)) & 1u; }
+    bool stippleKeeps(int x, int y, bool mirrored) const { return stippleKeeps(x, mirrored ? fb_.height - 1 - y : y); }
     // Lane bits of quad (qx, qy) (qx even): lane = dx + 2 dy.
     unsigned stippleQuad(int qx, int qy) const {
         const unsigned bottom = (state.stipple.rows[qy & 31] >> (qx & 31)) & 3u;

@@ -41,7 +41,7 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
                 for (int lane = 0; lane < 4; ++lane)
                     if ((m >> lane & 1u) && !s.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
             c.generated += lanes(m);
-            if (m && p.stipple && !p.stippleLate) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
+            if (m && p.stipple && !p.stippleLate && !p.stippleStart) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
             if (m && p.scissor) m = keep(m, inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
                                                       state.scissor.y + state.scissor.height), c.rejected[int(Stage::Scissor)]);
             masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m);
@@ -108,12 +108,23 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         if (fail != Stage::Count) ++c.rejected[int(fail)], mask &= ~(1u << lane), noBoundsFailure &= fail != Stage::Bounds;
         else if (p.countEarly) ++c.samplesPassed;
     }
+    unsigned killed = 0;  // stippled by a kill at the program's start: the program runs, the fragment dies
+    if (p.stippleStart)
+        for (int lane = 0; lane < 4; ++lane)
+            if ((mask >> lane & 1u) && !stippleKeeps(qx + (lane & 1), qy + (lane >> 1), p.stippleMirrored))
+                ++c.rejected[int(Stage::Stipple)], mask &= ~(1u << lane), killed |= 1u << lane;
     if (!mask) {
-        if (p.emptyQuadsRun && noBoundsFailure) c.invocations += 4;  // the program runs, its results are dropped
+        if (p.emptyQuadsRun && noBoundsFailure && !killed) {  // the program runs (past a stipple kill), results dropped
+            unsigned run = 0xFu;
+            for (int lane = 0; lane < 4 && p.stippleStart; ++lane)
+                if (!stippleKeeps(qx + (lane & 1), qy + (lane >> 1), p.stippleMirrored)) run &= ~(1u << lane);
+            c.invocations += lanes(run);
+        }
+        if (killed) c.invocations += p.quad ? 4 : lanes(killed), c.helpers += p.quad ? 4 : lanes(killed);
         return;
     }
     FragmentOutput out[4];
-    const unsigned shaded = p.quad ? 0xFu : mask;
+    const unsigned shaded = p.quad ? 0xFu : mask | killed;
     for (int lane = 0; lane < 4; ++lane) {
         if (!(shaded >> lane & 1u)) continue;
         const int x = qx + (lane & 1), y = qy + (lane >> 1);
@@ -135,7 +146,7 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         const std::size_t idx = fb_.index(x, y);
         const FragmentOutput& o = out[lane];
         if (o.discard) { ++c.discarded; continue; }
-        if (p.stippleLate && !stippleKeeps(x, y)) { ++c.rejected[int(Stage::Stipple)]; continue; }
+        if (p.stippleLate && !stippleKeeps(x, y, p.stippleMirrored)) { ++c.rejected[int(Stage::Stipple)]; continue; }
         if (p.bounds && !p.boundsEarly && !inBounds(idx)) { ++c.rejected[int(Stage::Bounds)]; continue; }
         const float zf = p.writesDepth ? (o.depth >= 0.0f ? std::min(o.depth, 1.0f) : 0.0f) : z[lane];  // NaN -> 0
         if (p.zsLate) {

@@ -85,9 +85,9 @@ Profile readProfile(Reader& r) {
     p.fillRule = r.choice<FillRule>("fill_rule", {{"top_left", FillRule::TopLeft}, {"top_right", FillRule::TopRight},
                                                    {"bottom_left", FillRule::BottomLeft}, {"bottom_right", FillRule::BottomRight}});
     p.floatSpans = r.choice<bool>("scan", {{"edge_functions", false}, {"float_spans", true}});
-    p.stipple = r.choice<StipplePosition>("stipple", {{"rasterizer", StipplePosition::Rasterizer}, {"late", StipplePosition::Late}});
+    p.stipple = r.choice<StipplePosition>("stipple", {{"rasterizer", StipplePosition::Rasterizer}, {"program_start", StipplePosition::ProgramStart}, {"late", StipplePosition::Late}});
     p.polygonStipple = r.flag("polygon_stipple");
-    p.stippleDisablesEarly = r.flag("stipple_disables_early_tests");
+    p.stippleMirroredWithPosition = r.flag("stipple_mirrored_when_program_reads_position");
     p.earlyNeedsDepthTest = r.flag("early_tests_need_depth_test");
     p.emptyQuadsStillRun = r.flag("early_rejected_quads_still_run");
     p.earlyTests = r.choice<EarlyTests>(

@@ -11,7 +11,9 @@
 
 namespace weft::hwsim {
 
-enum class StipplePosition { Rasterizer, Late };       // rejected at scan conversion, or after the program
+// Where stippled fragments die: at scan conversion; as a kill at the start of
+// the program (it runs, the fragment is gone before its body); after the program.
+enum class StipplePosition { Rasterizer, ProgramStart, Late };
 enum class EarlyTests { PerPixel, CoarseOnly, None };  // depth/stencil/bounds tests before the program
 enum class BoundsSupport { Early, WithDepthTest, Late, Unsupported };  // WithDepthTest: early exactly when depth is
 enum class DiscardRule { Never, Always, WithStencilWrites, WithDepthOrStencilWrites };
@@ -32,7 +34,7 @@ struct Profile {
     bool directionChangeDisablesCoarse = false;  // LESS <-> GREATER within a frame loses coarse culling until a clear
     DiscardRule discardForcesLate = DiscardRule::Never;  // otherwise: test early, write after the program
     bool sideEffectsForceLate = true;   // programs with memory side effects run before the tests (GL rule)
-    bool stippleDisablesEarly = false;   // stipple implemented as a discard inserted into the program
+    bool stippleMirroredWithPosition = false;  // (softpipe) stipple rows mirrored in y when the program reads its position
     bool earlyNeedsDepthTest = false;    // no early tests (stencil, bounds) unless the depth test is on
     bool emptyQuadsStillRun = false;     // with stencil on, a quad emptied by early stencil/depth still runs (4 lanes counted)
     bool queryCountsAtEarlyTests = true; // with early_fragment_tests, SAMPLES_PASSED counts before a discard (GL spec)

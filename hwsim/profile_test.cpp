@@ -29,7 +29,7 @@ TEST(HwsimProfile, BadFilesNameKeyAndValidValues) {
     EXPECT_NE(errorOf("{").find("p.json"), std::string::npos);
     EXPECT_NE(errorOf("{\"name\": \"x\"}").find("missing key 'description'"), std::string::npos);
     const std::string base = R"({"name":"x","description":"d","sources":"s","fill_rule":"top_left","scan":"edge_functions","stipple":"rasterizer",
-      "polygon_stipple":true,"stipple_disables_early_tests":false,"early_tests":"per_pixel","early_tests_need_depth_test":false,"early_rejected_quads_still_run":false,"coarse_tile":0,
+      "polygon_stipple":true,"stipple_mirrored_when_program_reads_position":false,"early_tests":"per_pixel","early_tests_need_depth_test":false,"early_rejected_quads_still_run":false,"coarse_tile":0,
       "coarse_stencil":false,"depth_bounds":"early","bounds_change_forces_late":false,
       "depth_direction_change_disables_coarse":false,"discard_forces_late":"never","side_effects_force_late":true,"query_counts_at_early_tests":true,
       "shading":"pixel","branch_block":[1,1])";
@@ -37,7 +37,7 @@ TEST(HwsimProfile, BadFilesNameKeyAndValidValues) {
     EXPECT_NE(errorOf(base + ",\"colour\":1}").find("unknown key 'colour'"), std::string::npos);
     std::string badStipple = base + "}";
     badStipple.replace(badStipple.find("\"rasterizer\""), 12, "\"sometimes\"");
-    EXPECT_NE(errorOf(badStipple).find("not one of rasterizer|late"), std::string::npos);
+    EXPECT_NE(errorOf(badStipple).find("not one of rasterizer|program_start|late"), std::string::npos);
     std::string badTile = base + "}";
     badTile.replace(badTile.find("\"coarse_tile\":0"), 15, "\"coarse_tile\":6");
     EXPECT_NE(errorOf(badTile).find("power of two"), std::string::npos);

@@ -1,8 +1,8 @@
-// Mesa cross-checks: the pass lists of crosscheck_cases.hpp rendered by
-// llvmpipe and softpipe (weft_mesa_check, one process per driver) and by
-// hwsim under the matching profile must give equal counts — SAMPLES_PASSED,
-// non-helper program invocations (an atomic counter in the program), and
-// which pixels were written. If EGL cannot make a context the test fails
+// Mesa cross-checks: the pass lists of crosscheck_cases.hpp (fixed ones and
+// 120 seeded random ones) rendered by llvmpipe and softpipe (weft_mesa_check,
+// one process per driver) and by hwsim under the matching profile must give
+// equal counts — SAMPLES_PASSED, non-helper program invocations (an atomic
+// counter in the program), and which pixels were written. If EGL cannot make a context the test fails
 // with the reason.
 #include <gtest/gtest.h>
 
@@ -72,7 +72,7 @@ Counts runOnHwsim(const Case& c, const Profile& profile) {
     for (const Pass& pass : c.passes) {
         pipe.state = pass.state;
         const ProgramTraits traits{pass.program == ProgramKind::WriteDepth, pass.program == ProgramKind::DiscardOdd, true,
-                                   pass.earlyFragmentTests};
+                                   pass.earlyFragmentTests, pass.program != ProgramKind::Plain};
         for (std::size_t i = 0; i + 2 < pass.triangles.size(); i += 3) {
             const Vertex v[3] = {pass.triangles[i], pass.triangles[i + 1], pass.triangles[i + 2]};
             pipe.drawTriangle(v, CaseProgram{pass.program}, traits);
@@ -87,22 +87,13 @@ Counts runOnHwsim(const Case& c, const Profile& profile) {
     return counts;
 }
 
-bool equal(const Counts& a, const Counts& b) {
-    return a.samplesPassed == b.samplesPassed && a.invocations == b.invocations && a.written == b.written &&
-           a.writtenHash == b.writtenHash;
-}
-
-// exactRandom: whether the random pass lists must match too (llvmpipe), or
-// only at least `minRandomMatches` of them (softpipe, whose handling of
-// stencil with killing programs is not fully modelled; see the profile).
 void crossCheck(const std::string& driver, const std::string& profileName, bool exactRandom = true, int minRandomMatches = 0) {
     const DriverRun run = runDriver(driver);
     ASSERT_EQ(run.status, 0) << "weft_mesa_check could not run on " << driver << ":\n" << run.output;
     ASSERT_NE(run.output.find("RENDERER " + driver), std::string::npos) << "not Mesa's " << driver << ":\n" << run.output;
     const std::map<std::string, Counts> gl = parse(run.output);
     const Profile& profile = findProfile(profileName);
-    int compared = 0, randomCases = 0, randomMatches = 0;
-    std::string differing;
+    int compared = 0;
     for (const Case& c : allCases()) {
         if (c.needsBounds && profile.bounds == BoundsSupport::Unsupported) {
             EXPECT_THROW(runOnHwsim(c, profile), Error) << c.name;  // the profile refuses what the driver lacks
@@ -112,28 +103,17 @@ void crossCheck(const std::string& driver, const std::string& profileName, bool 
         ASSERT_TRUE(gl.count(c.name)) << c.name << " missing from:\n" << run.output;
         const Counts& g = gl.at(c.name);
         const Counts h = runOnHwsim(c, profile);
-        const bool random = c.name.rfind("random_", 0) == 0;
-        if (random && !exactRandom) {
-            randomCases += 1, randomMatches += equal(h, g);
-            if (!equal(h, g)) differing += " " + c.name;
-            continue;
-        }
         EXPECT_EQ(h.samplesPassed, g.samplesPassed) << driver << " " << c.name << " SAMPLES_PASSED";
         EXPECT_EQ(h.invocations, g.invocations) << driver << " " << c.name << " program invocations";
         EXPECT_EQ(h.written, g.written) << driver << " " << c.name << " pixels written";
         EXPECT_EQ(h.writtenHash, g.writtenHash) << driver << " " << c.name << " which pixels were written";
         ++compared;
     }
-    EXPECT_GE(compared, exactRandom ? 100 : 14);
-    if (!exactRandom) {
-        std::printf("%s: %d of %d random pass lists match exactly; differing:%s\n", driver.c_str(), randomMatches, randomCases,
-                    differing.c_str());
-        EXPECT_GE(randomMatches, minRandomMatches);
-    }
+    EXPECT_GE(compared, 100);  // the fixed cases and the random pass lists (those needing bounds skip on llvmpipe)
 }
 
 TEST(HwsimMesa, LlvmpipeCountsEqualHwsim) { crossCheck("llvmpipe", "mesa-llvmpipe"); }
-TEST(HwsimMesa, SoftpipeCountsEqualHwsim) { crossCheck("softpipe", "mesa-softpipe", false, 80); }
+TEST(HwsimMesa, SoftpipeCountsEqualHwsim) { crossCheck("softpipe", "mesa-softpipe"); }
 
 }  // namespace
 }  // namespace weft::crosscheck
