@@ -122,6 +122,24 @@ TEST(HwsimStipple, LateStippleRunsTheProgramFirst) {
     EXPECT_EQ(pipe.counts().samplesPassed, 1024);
 }
 
+// A kill at the program's start: the program runs for every covered pixel,
+// the stippled ones as dropped (helper) runs, and the early depth test is
+// lost to it when depth is written (modern-desktop's discard rule).
+TEST(HwsimStipple, KillAtProgramStartRunsButDropsTheFragment) {
+    Framebuffer fb(64, 64);
+    Pipeline pipe(fb, findProfile("modern-desktop"));
+    pipe.state.stipple = {true, StippleState::interleaved(2, 0, 0)};
+    pipe.drawRect(0, 0, 64, 64, 0, Flat{});
+    EXPECT_EQ(pipe.counts().invocations, 4096);
+    EXPECT_EQ(pipe.counts().helpers, 3072);
+    EXPECT_EQ(pipe.counts().rejected[int(Stage::Stipple)], 3072);
+    EXPECT_EQ(pipe.counts().samplesPassed, 1024);
+    pipe.state.depth = {true, CompareFunc::Less, true};
+    EXPECT_FALSE(pipe.plan({}).zsEarly);
+    pipe.state.depth.writeMask = false;
+    EXPECT_TRUE(pipe.plan({}).zsEarly);
+}
+
 TEST(HwsimScissor, KeepsTheRectangle) {
     Framebuffer fb(16, 16);
     Pipeline pipe(fb, findProfile("ideal"));
