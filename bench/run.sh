@@ -3,5 +3,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build/bin/weft_bench_patterns --threads 2
+build/bin/hwsim_throughput
 python3 bench/kraus_tables.py "$@"
 /usr/bin/python3 bench/volume_vs_vdb_render.py "$@"
+/usr/bin/python3 bench/segovia_tables.py

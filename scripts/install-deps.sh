@@ -14,6 +14,8 @@ PACKAGES=(
   libtinyobjloader-dev libassimp-dev
   # small well-kept libraries
   libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # Mesa (llvmpipe, softpipe) headless through EGL: hwsim's cross-checks
+  libegl-mesa0 libgl1-mesa-dri libegl-dev libopengl-dev libgl-dev
   # tools: vdb_render/vdb_print, oiiotool/iinfo, ociocheck; python for scripts
   libopenvdb-tools openimageio-tools opencolorio-tools
   python3 python3-openimageio python3-numpy python3-matplotlib

@@ -104,6 +104,8 @@ private:
     const OracleInfo& oracle_;
 };
 
+}  // namespace
+
 std::vector<ParamSpec> adaptiveParamSpecs() {
     std::vector<ParamSpec> specs = sliceParamSpecs();
     specs.push_back(stringParam("oracle", "gradient_alpha", "sampling-distance oracle (oracles: weft help volume.adaptive3d)",
@@ -112,6 +114,8 @@ std::vector<ParamSpec> adaptiveParamSpecs() {
     specs.push_back(floatParam("epsilon", 0.01, 0, 1, "oracle feature threshold: gradient_alpha |grad opacity| per voxel, majorant opacity change in a brick"));
     return specs;
 }
+
+namespace {
 
 const TechniqueRegistrar registrar{{
     "volume.adaptive3d",

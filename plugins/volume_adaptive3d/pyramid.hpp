@@ -43,6 +43,9 @@ struct PyramidLevel {
     double pixelAngle = 0;
 };
 
+// volume.adaptive3d's parameter table (its replays in hwsim share it).
+std::vector<ParamSpec> adaptiveParamSpecs();
+
 class Pyramid {
 public:
     Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& slices, int lmax, int paddedWidth,
@@ -75,11 +78,13 @@ public:
     std::uint8_t tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty);
     void flush();  // adds this worker's counts to the counters
 
-private:
+    // The three operations of Figure 4 on one pixel (hwsim's replays run
+    // them as fragment programs of the paper's GPU passes).
     void synthesize(Pyramid& pyramid, int l, int x, int y, int idx);
     void sample(PyramidLevel& level, int l, int idx, int slice);
     void composite(Pyramid& pyramid, int idx, int slice);
 
+private:
     SliceContext& sc_;
     ScalarSampler data_;
     openvdb::FloatGrid::ConstAccessor oracleAccessor_;

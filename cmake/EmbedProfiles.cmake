@@ -1,0 +1,16 @@
+# Writes every <dir>/*.json into a generated header as {file name, text}
+# pairs (hwsim/profile.cpp includes it) and re-runs when a file changes.
+function(weft_embed_profiles target dir)
+  file(GLOB files CONFIGURE_DEPENDS ${dir}/*.json)
+  set(content "static const EmbeddedProfile kEmbeddedProfiles[] = {\n")
+  foreach(f IN LISTS files)
+    file(READ ${f} text)
+    get_filename_component(name ${f} NAME)
+    string(APPEND content "    {\"${name}\", R\"weftjson(${text})weftjson\"},\n")
+  endforeach()
+  string(APPEND content "};\n")
+  set(out ${CMAKE_BINARY_DIR}/generated/hwsim_profiles_embedded.inc)
+  file(CONFIGURE OUTPUT ${out} CONTENT "${content}" @ONLY)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${files})
+  target_include_directories(${target} PRIVATE ${CMAKE_BINARY_DIR}/generated)
+endfunction()

@@ -1,0 +1,193 @@
+#pragma once
+// The modelled GL fragment pipeline. A draw scans a primitive in screen
+// tiles of 2x2 quads and runs each covered pixel through small stage units
+// in GL order:
+//   rasterizer: coverage (fragments.generated), polygon stipple, scissor
+//   coarse:     hierarchical depth / stencil / bounds culling of whole tiles
+//   early:      depth bounds, stencil, depth (when the profile and program allow)
+//   program:    the fragment program, per pixel or per 2x2 quad with helpers
+//   late:       stipple (when late), bounds, stencil, depth, occlusion query,
+//               blending and writes
+// The fragment program is any callable `void(const Fragment&, FragmentOutput&)`,
+// a template parameter, so the per-fragment loop has no virtual call and no
+// allocation. Programs may be called concurrently for different pixels.
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <vector>
+
+#include "hwsim/counts.hpp"
+#include "hwsim/framebuffer.hpp"
+#include "hwsim/gl_state.hpp"
+#include "hwsim/profile.hpp"
+#include "hwsim/raster.hpp"
+
+namespace weft::hwsim {
+
+// What the pipeline must know of a program to place the tests around it.
+struct ProgramTraits {
+    bool writesDepth = false;         // gl_FragDepth
+    bool mayDiscard = false;          // discard / kill
+    bool sideEffects = false;         // image, buffer or atomic-counter writes
+    bool earlyFragmentTests = false;  // layout(early_fragment_tests)
+    bool readsPosition = false;       // gl_FragCoord (matters only to a profile quirk)
+};
+
+struct Fragment {
+    int x, y;
+    float z;      // interpolated window depth
+    bool helper;  // runs only to complete a 2x2 quad; its results are dropped
+};
+
+struct FragmentOutput {
+    std::array<float, 4> color{0, 0, 0, 1};
+    float depth = 0;       // read when the program writes depth
+    bool discard = false;
+    int cost = 1;          // length of the path this invocation took (branch cost model)
+};
+
+// A program whose outputs go to storage of the caller's (further render
+// targets, as a multi-target program writes them): `write` runs for every
+// fragment that passes all tests, where the pipeline writes colour; a
+// fragment rejected after the program leaves no trace, as on hardware.
+template <class Shade, class Write>
+struct ProgramWithWrites {
+    Shade shade;
+    Write write;
+    void operator()(const Fragment& f, FragmentOutput& o) const { shade(f, o); }
+    void writeOutputs(const Fragment& f, const FragmentOutput& o) const { write(f, o); }
+};
+template <class Shade, class Write>
+ProgramWithWrites<Shade, Write> withWrites(Shade shade, Write write) {
+    return {std::move(shade), std::move(write)};
+}
+
+// Where each stage runs for one draw; made once per draw from the state,
+// the profile and the program's traits.
+struct DrawPlan {
+    bool stipple = false, stippleStart = false, stippleLate = false, stippleMirrored = false, scissor = false;
+    bool bounds = false, boundsEarly = false;
+    bool stencil = false, depth = false, zsEarly = false, zsLate = false, deferWrites = false;
+    bool depthWrites = false, stencilWrites = false, writesDepth = false;
+    bool coarse = false, coarseDepth = false, coarseStencil = false, coarseBounds = false;
+    bool quad = false;
+    bool countEarly = false;
+    bool emptyQuadsRun = false;  // quads emptied by early tests still run (profile quirk)
+    bool simple = false;  // per-pixel programs, at most an early depth test: the short path  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
+    int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
+};
+
+class Pipeline {
+public:
+    Pipeline(Framebuffer& fb, const Profile& profile) : fb_(fb), profile_(profile) {}
+
+    PipelineState state;
+
+    // A depth clear starts a new frame for the profile's "within a frame" rules.
+    void clearDepth(float value = 1.0f);
+    void clearStencil(std::uint8_t value = 0);
+    void clearColor(std::array<float, 4> value = {0, 0, 0, 0});
+
+    template <class Program>
+    void drawTriangle(const Vertex (&v)[3], Program&& program, ProgramTraits traits = {}) {
+        draw(profile_.floatSpans ? setupTriangleSpans(v, fb_.width, fb_.height, spans_)
+                                 : setupTriangle(v, profile_.fillRule, fb_.width, fb_.height),
+             program, traits);
+    }
+    // GL_QUADS: the triangles (0, 1, 2) and (0, 2, 3).
+    template <class Program>
+    void drawQuad(const Vertex (&v)[4], Program&& program, ProgramTraits traits = {}) {
+        const Vertex a[3] = {v[0], v[1], v[2]}, b[3] = {v[0], v[2], v[3]};
+        drawTriangle(a, program, traits);
+        drawTriangle(b, program, traits);
+    }
+    template <class Program>
+    void drawRect(int x0, int y0, int x1, int y1, float z, Program&& program, ProgramTraits traits = {}) {
+        draw(setupRect(x0, y0, x1, y1, z, fb_.width, fb_.height), program, traits);
+    }
+
+    // SAMPLES_PASSED between begin and end.
+    void beginQuery() { queryStart_ = counts_.samplesPassed; }
+    std::int64_t endQuery() const { return counts_.samplesPassed - queryStart_; }
+
+    const StageCounts& counts() const { return counts_; }
+    void resetCounts() { counts_ = StageCounts{}; }
+    Framebuffer& framebuffer() { return fb_; }
+    const Profile& profile() const { return profile_; }
+    void setParallel(bool on) { parallel_ = on; }
+    // The plan the next draw with these traits would use (tests, documentation).
+    DrawPlan plan(const ProgramTraits& traits);
+
+private:
+    template <class Program>
+    void draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits);
+    template <class Program>
+    void scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, StageCounts& c) const;
+    void cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int y1, int x1,
+                         std::uint8_t* masks, StageCounts& c) const;
+    template <class Program>
+    void shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                     StageCounts& c) const;
+    template <class Program>
+    void shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                   StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const;
+
+    // Stencil then depth at one pixel; Stage::Count when both pass. Writes
+    // the updates unless `pending` is given, which then receives them.
+    struct Pending {
+        bool stencil = false, depth = false;
+        std::uint8_t stencilValue = 0;
+        float depthValue = 0;
+    };
+    Stage stencilDepth(std::size_t idx, float z, const DrawPlan& p, bool early, Pending* pending) const;
+    void applyPending(std::size_t idx, const Pending& pending) const;
+    bool inBounds(std::size_t idx) const {
+        const float d = fb_.depth[idx];
+        return d >= state.bounds.zmin && d <= state.bounds.zmax;
+    }
+    bool stippleKeeps(int x, int y) const { return (state.stipple.rows[y & 31] >> (x & 31)) & 1u; }
+    bool stippleKeeps(int x, int y, bool mirrored) const { return stippleKeeps(x, mirrored ? fb_.height - 1 - y : y); }
+    // Lane bits of quad (qx, qy) (qx even): lane = dx + 2 dy.
+    unsigned stippleQuad(int qx, int qy) const {
+        const unsigned bottom = (state.stipple.rows[qy & 31] >> (qx & 31)) & 3u;
+        const unsigned top = (state.stipple.rows[(qy + 1) & 31] >> (qx & 31)) & 3u;
+        return bottom | top << 2;
+    }
+    static unsigned inBoxMask(int qx, int qy, int x0, int y0, int x1, int y1) {
+        const unsigned cols = unsigned(qx >= x0 && qx < x1) | unsigned(qx + 1 >= x0 && qx + 1 < x1) << 1;
+        const unsigned rows = unsigned(qy >= y0 && qy < y1) | unsigned(qy + 1 >= y0 && qy + 1 < y1) << 1;
+        return (rows & 1u ? cols : 0u) | (rows & 2u ? cols << 2 : 0u);
+    }
+    // The kept lanes of mask; adds the dropped ones to a rejection count.
+    static unsigned keep(unsigned mask, unsigned kept, std::int64_t& rejected) {
+        rejected += lanes(mask & ~kept);
+        return mask & kept;
+    }
+    bool scissorKeeps(int x, int y) const {
+        const ScissorState& s = state.scissor;
+        return x >= s.x && x < s.x + s.width && y >= s.y && y < s.y + s.height;
+    }
+    // Whether every covered fragment of the tile fails a coarse test; which.
+    bool coarseReject(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int tx1, int ty1, Stage& stage) const;
+    void writeColor(std::size_t idx, const std::array<float, 4>& src) const;
+
+    Framebuffer& fb_;
+    const Profile& profile_;
+    StageCounts counts_;
+    std::int64_t queryStart_ = 0;
+    bool parallel_ = true;
+    // Frame history for the profile's rules (reset by clearDepth).
+    int frameDirection_ = 0;
+    bool coarseLost_ = false;
+    bool frameBoundsSet_ = false, boundsLost_ = false;
+    float frameBounds_[2] = {0, 0};
+    SpanRows spans_;  // reused by every float-span triangle
+};
+
+}  // namespace weft::hwsim
+
+#include "hwsim/pipeline_scan.hpp"

@@ -1,0 +1,220 @@
+#pragma once
+// The per-fragment part of Pipeline (templates on the fragment program).
+// Included by pipeline.hpp only.
+
+namespace weft::hwsim {
+
+template <class Program>
+void Pipeline::draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits) {
+    const DrawPlan p = plan(traits);
+    if (s.empty()) return;
+    const int tx0 = s.x0 / p.tileW * p.tileW, ty0 = s.y0 / p.tileH * p.tileH;
+    const int rows = (s.y1 - ty0 + p.tileH - 1) / p.tileH;
+    tbb::combinable<StageCounts> perThread;
+    auto rowsBody = [&](const tbb::blocked_range<int>& r) {
+        StageCounts& c = perThread.local();
+        for (int row = r.begin(); row != r.end(); ++row)
+            for (int tx = tx0; tx < s.x1; tx += p.tileW) scanTile(s, program, p, tx, ty0 + row * p.tileH, c);
+    };
+    const long area = long(s.x1 - s.x0) * (s.y1 - s.y0);
+    if (parallel_ && rows > 1 && area >= 16384) tbb::parallel_for(tbb::blocked_range<int>(0, rows), rowsBody);
+    else rowsBody(tbb::blocked_range<int>(0, rows));
+    perThread.combine_each([&](const StageCounts& c) { counts_.add(c); });
+}
+
+// One tile: coverage and the rasterizer's tests for every quad, then the
+// coarse test of the whole tile, then each live quad through the rest.
+template <class Program>
+void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0,
+                        StageCounts& c) const {
+    const int x0 = std::max(tx0, s.x0), y0 = std::max(ty0, s.y0);
+    const int x1 = std::min(tx0 + p.tileW, s.x1), y1 = std::min(ty0 + p.tileH, s.y1);
+    const int qw = p.tileW / 2;
+    std::array<std::uint8_t, 32 * 32> masks;  // tiles are at most 64 x 64
+    const TileCoverage coverage = s.spans ? TileCoverage::Partial : classifyTile(s.edges, tx0, ty0, tx0 + p.tileW, ty0 + p.tileH);
+    if (coverage == TileCoverage::None) return;
+    int live = 0;
+    for (int qy = ty0; qy < y1; qy += 2)
+        for (int qx = tx0; qx < x1; qx += 2) {
+            unsigned m = inBoxMask(qx, qy, x0, y0, x1, y1);
+            if (coverage == TileCoverage::Partial)
+                for (int lane = 0; lane < 4; ++lane)
+                    if ((m >> lane & 1u) && !s.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
+            c.generated += lanes(m);
+            if (m && p.stipple && !p.stippleLate && !p.stippleStart) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
+            if (m && p.scissor) m = keep(m, inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
+                                                      state.scissor.y + state.scissor.height), c.rejected[int(Stage::Scissor)]);
+            masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m);
+            live += lanes(m);
+        }
+    if (live == 0) return;
+    if (p.coarse) cullCoarseTiles(s, p, tx0, ty0, y1, x1, masks.data(), c);
+    const int blocks = (p.tileW / p.blockW) * (p.tileH / p.blockH);
+    std::array<std::int64_t, 32 * 32> blockMax, blockLanes;  // blocks are at least 2x2 when used
+    const bool lockStep = p.blockW * p.blockH > 1;
+    if (lockStep) std::fill_n(blockMax.begin(), blocks, 0), std::fill_n(blockLanes.begin(), blocks, 0);
+    for (int qy = ty0; qy < y1; qy += 2)
+        for (int qx = tx0; qx < x1; qx += 2)
+            if (const unsigned m = masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2]; m && p.simple)
+                shadePixels(s, program, p, qx, qy, m, c);
+            else if (m)
+                shadeQuad(s, program, p, qx, qy, m, c, lockStep ? blockMax.data() : nullptr, blockLanes.data(), tx0, ty0);
+    if (lockStep)
+        for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * blockLanes[b];
+}
+
+// The short path (DrawPlan::simple): each live pixel through an optional
+// early depth test, the program and the write.
+template <class Program>
+void Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                           StageCounts& c) const {
+    const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(mask >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const std::size_t idx = fb_.index(x, y);
+        const float z = s.depthAt(x, y);
+        if (p.depth) {
+            if (!compare(state.depth.func, z, fb_.depth[idx])) { ++c.rejected[int(Stage::DepthEarly)]; continue; }
+            if (p.depthWrites) fb_.depth[idx] = z;
+        }
+        FragmentOutput o;
+        program(Fragment{x, y, z, false}, o);
+        ++c.invocations;
+        c.cost += o.cost;
+        if (o.discard) { ++c.discarded; continue; }
+        ++c.samplesPassed;
+        if (colorWritten) writeColor(idx, o.color);
+        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, z, false}, o);
+        c.pixelsWritten += colorWritten || p.depthWrites;
+    }
+}
+
+// One 2x2 quad whose covered lanes passed the rasterizer's tests (mask).
+template <class Program>
+void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                         StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const {
+    Pending pending[4];
+    float z[4];
+    bool noBoundsFailure = true;
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(mask >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const std::size_t idx = fb_.index(x, y);
+        z[lane] = s.depthAt(x, y);
+        Stage fail = Stage::Count;
+        if (p.boundsEarly && !inBounds(idx)) fail = Stage::Bounds;
+        else if (p.zsEarly) fail = stencilDepth(idx, z[lane], p, true, p.deferWrites ? &pending[lane] : nullptr);
+        if (fail != Stage::Count) ++c.rejected[int(fail)], mask &= ~(1u << lane), noBoundsFailure &= fail != Stage::Bounds;
+        else if (p.countEarly) ++c.samplesPassed;
+    }
+    unsigned killed = 0;  // stippled by a kill at the program's start: the program runs, the fragment dies
+    if (p.stippleStart)
+        for (int lane = 0; lane < 4; ++lane)
+            if ((mask >> lane & 1u) && !stippleKeeps(qx + (lane & 1), qy + (lane >> 1), p.stippleMirrored))
+                ++c.rejected[int(Stage::Stipple)], mask &= ~(1u << lane), killed |= 1u << lane;
+    if (!mask) {
+        if (p.emptyQuadsRun && noBoundsFailure && !killed) {  // the program runs (past a stipple kill), results dropped
+            unsigned run = 0xFu;
+            for (int lane = 0; lane < 4 && p.stippleStart; ++lane)
+                if (!stippleKeeps(qx + (lane & 1), qy + (lane >> 1), p.stippleMirrored)) run &= ~(1u << lane);
+            c.invocations += lanes(run);
+        }
+        if (killed) c.invocations += p.quad ? 4 : lanes(killed), c.helpers += p.quad ? 4 : lanes(killed);
+        return;
+    }
+    FragmentOutput out[4];
+    const unsigned shaded = p.quad ? 0xFu : mask | killed;
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(shaded >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const bool helper = !(mask >> lane & 1u);
+        ++c.invocations;
+        c.helpers += helper;
+        const bool inside = x < fb_.width && y < fb_.height;
+        if (inside) program(Fragment{x, y, helper ? s.depthAt(x, y) : z[lane], helper}, out[lane]);
+        if (!blockMax) c.cost += out[lane].cost;
+        else {
+            const int b = ((y - ty0) / p.blockH) * (p.tileW / p.blockW) + (x - tx0) / p.blockW;
+            blockMax[b] = std::max<std::int64_t>(blockMax[b], inside ? out[lane].cost : 0);
+            ++blockLanes[b];
+        }
+    }
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(mask >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const std::size_t idx = fb_.index(x, y);
+        const FragmentOutput& o = out[lane];
+        if (o.discard) { ++c.discarded; continue; }
+        if (p.stippleLate && !stippleKeeps(x, y, p.stippleMirrored)) { ++c.rejected[int(Stage::Stipple)]; continue; }
+        if (p.bounds && !p.boundsEarly && !inBounds(idx)) { ++c.rejected[int(Stage::Bounds)]; continue; }
+        const float zf = p.writesDepth ? (o.depth >= 0.0f ? std::min(o.depth, 1.0f) : 0.0f) : z[lane];  // NaN -> 0
+        if (p.zsLate) {
+            const Stage fail = stencilDepth(idx, zf, p, false, nullptr);
+            if (fail != Stage::Count) { ++c.rejected[int(fail)]; continue; }
+        } else if (p.deferWrites) {
+            applyPending(idx, pending[lane]);
+        }
+        if (!p.countEarly) ++c.samplesPassed;
+        const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+        if (colorWritten) writeColor(idx, o.color);
+        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false}, o);
+        c.pixelsWritten += colorWritten || p.depthWrites;
+    }
+}
+
+inline Stage Pipeline::stencilDepth(std::size_t idx, float z, const DrawPlan& p, bool early, Pending* pending) const {
+    const StencilState& st = state.stencil;
+    std::uint8_t& stored = fb_.stencil[idx];
+    auto stencilUpdate = [&](StencilOp op, Pending* into) {
+        if (!p.stencil) return;
+        const std::uint8_t v = maskedStencilWrite(stored, applyStencilOp(op, stored, st.ref), st.writeMask);
+        if (into) into->stencil = true, into->stencilValue = v;
+        else stored = v;
+    };
+    if (p.stencil && !stencilPasses(st, stored)) {
+        stencilUpdate(st.sfail, nullptr);
+        return Stage::Stencil;
+    }
+    if (p.depth && !compare(state.depth.func, z, fb_.depth[idx])) {
+        stencilUpdate(st.dpfail, nullptr);
+        return early ? Stage::DepthEarly : Stage::DepthLate;
+    }
+    stencilUpdate(st.dppass, pending);
+    if (p.depthWrites) {
+        if (pending) pending->depth = true, pending->depthValue = z;
+        else fb_.depth[idx] = z;
+    }
+    return Stage::Count;
+}
+
+inline void Pipeline::applyPending(std::size_t idx, const Pending& pending) const {
+    if (pending.stencil) fb_.stencil[idx] = pending.stencilValue;
+    if (pending.depth) fb_.depth[idx] = pending.depthValue;
+}
+
+namespace detail {
+
+inline float factor(BlendFactor f, const std::array<float, 4>& src, const std::array<float, 4>& dst) {
+    switch (f) {
+        case BlendFactor::Zero: return 0;
+        case BlendFactor::One: return 1;
+        case BlendFactor::SrcAlpha: return src[3];
+        case BlendFactor::OneMinusSrcAlpha: return 1 - src[3];
+        case BlendFactor::DstAlpha: return dst[3];
+        case BlendFactor::OneMinusDstAlpha: return 1 - dst[3];
+    }
+    return 1;
+}
+
+}  // namespace detail
+
+inline void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src) const {
+    std::array<float, 4>& dst = fb_.color[idx];
+    const BlendState& b = state.blend;
+    const float fs = b.enabled ? detail::factor(b.src, src, dst) : 1, fd = b.enabled ? detail::factor(b.dst, src, dst) : 0;
+    for (int ch = 0; ch < 4; ++ch)
+        if (state.colorMask[ch]) dst[ch] = b.enabled ? src[ch] * fs + dst[ch] * fd : src[ch];
+}
+
+}  // namespace weft::hwsim

@@ -1,0 +1,211 @@
+// weft_mesa_check: renders the cross-check pass lists (crosscheck_cases.hpp)
+// with the GL implementation EGL finds (headless, surfaceless platform; the
+// Gallium driver is chosen by GALLIUM_DRIVER) and prints one line per case:
+//   CASE name samples=N invocations=N written=N hash=N
+// SAMPLES_PASSED comes from an occlusion query around the passes; the
+// invocations from an atomic counter each program increments first (helper
+// invocations do not count). Cases needing a missing extension print
+//   SKIP name reason
+// Anything that stops the checks prints "ERROR reason" and exits 2.
+//
+// A compatibility context (polygon stipple is compatibility-only), GLSL 3.30
+// with ARB_shader_atomic_counters and ARB_shader_image_load_store
+// (early_fragment_tests): softpipe offers GL 3.3, llvmpipe 4.5.
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "tests/hwsim/crosscheck_cases.hpp"
+
+namespace {
+
+using namespace weft::crosscheck;
+
+[[noreturn]] void fail(const std::string& why) {
+    std::printf("ERROR %s\n", why.c_str());
+    std::exit(2);
+}
+
+void makeContext() {
+    auto getDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (!getDisplay) fail("EGL has no eglGetPlatformDisplayEXT (EGL_EXT_platform_base)");
+    EGLDisplay display = getDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display == EGL_NO_DISPLAY) fail("no EGL display on the surfaceless platform (is libegl-mesa0 installed?)");
+    if (!eglInitialize(display, nullptr, nullptr)) fail("eglInitialize failed, EGL error 0x" + std::to_string(eglGetError()));
+    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT, EGL_NONE};
+    EGLContext ctx = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+    if (ctx == EGL_NO_CONTEXT) fail("eglCreateContext (GL 3.3 compatibility) failed, EGL error " + std::to_string(eglGetError()));
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) fail("eglMakeCurrent without a surface failed");
+}
+
+bool hasExtension(const char* name) {
+    GLint n = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (GLint i = 0; i < n; ++i)
+        if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))), name) == 0) return true;
+    return false;
+}
+
+GLuint compile(GLenum type, const std::string& src) {
+    GLuint s = glCreateShader(type);
+    const char* text = src.c_str();
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048];
+        glGetShaderInfoLog(s, sizeof log, nullptr, log);
+        fail(std::string("shader compile: ") + log);
+    }
+    return s;
+}
+
+GLuint program(ProgramKind kind, bool early) {
+    const std::string vs = "#version 330 compatibility\nlayout(location = 0) in vec3 p;\n"
+                           "void main() { gl_Position = vec4(p.xy / 32.0 - 1.0, p.z * 2.0 - 1.0, 1.0); }\n";
+    std::string fs = "#version 330 compatibility\n#extension GL_ARB_shader_atomic_counters : require\n"
+                     "#extension GL_ARB_shader_image_load_store : require\n";
+    if (early) fs += "layout(early_fragment_tests) in;\n";
+    fs += "layout(binding = 0, offset = 0) uniform atomic_uint runs;\nout vec4 color;\nvoid main() {\n"
+          "  atomicCounterIncrement(runs);\n  color = vec4(1.0);\n";
+    if (kind == ProgramKind::DiscardOdd) fs += "  if ((int(gl_FragCoord.x) & 1) == 1) discard;\n";
+    if (kind == ProgramKind::WriteDepth) fs += "  gl_FragDepth = gl_FragCoord.x < 32.0 ? 0.25 : 0.75;\n";
+    fs += "}\n";
+    GLuint prog = glCreateProgram();
+    glAttachShader(prog, compile(GL_VERTEX_SHADER, vs));
+    glAttachShader(prog, compile(GL_FRAGMENT_SHADER, fs));
+    glLinkProgram(prog);
+    GLint ok = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) fail("program link failed");
+    return prog;
+}
+
+GLenum glFunc(CompareFunc f) {
+    static const GLenum m[] = {GL_NEVER, GL_LESS, GL_EQUAL, GL_LEQUAL, GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
+    return m[int(f)];
+}
+GLenum glOp(StencilOp op) {
+    static const GLenum m[] = {GL_KEEP, GL_ZERO, GL_REPLACE, GL_INCR, GL_DECR, GL_INVERT, GL_INCR_WRAP, GL_DECR_WRAP};
+    return m[int(op)];
+}
+void enable(GLenum cap, bool on) { on ? glEnable(cap) : glDisable(cap); }
+
+bool boundsSupported = false;
+
+void applyState(const PipelineState& s) {
+    enable(GL_POLYGON_STIPPLE, s.stipple.enabled);
+    if (s.stipple.enabled) {
+        GLubyte bytes[128] = {};
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x)
+                if (s.stipple.rows[y] >> x & 1u) bytes[4 * y + x / 8] |= GLubyte(0x80u >> (x % 8));
+        glPolygonStipple(bytes);
+    }
+    enable(GL_SCISSOR_TEST, s.scissor.enabled);
+    glScissor(s.scissor.x, s.scissor.y, s.scissor.width, s.scissor.height);
+    if (boundsSupported) enable(GL_DEPTH_BOUNDS_TEST_EXT, s.bounds.enabled);
+    if (s.bounds.enabled) {
+        auto bounds = reinterpret_cast<PFNGLDEPTHBOUNDSEXTPROC>(eglGetProcAddress("glDepthBoundsEXT"));
+        bounds(s.bounds.zmin, s.bounds.zmax);
+    }
+    enable(GL_STENCIL_TEST, s.stencil.enabled);
+    glStencilFunc(glFunc(s.stencil.func), s.stencil.ref, s.stencil.valueMask);
+    glStencilOp(glOp(s.stencil.sfail), glOp(s.stencil.dpfail), glOp(s.stencil.dppass));
+    glStencilMask(s.stencil.writeMask);
+    enable(GL_DEPTH_TEST, s.depth.enabled);
+    glDepthFunc(glFunc(s.depth.func));
+    glDepthMask(s.depth.writeMask ? GL_TRUE : GL_FALSE);
+}
+
+void runCase(const Case& c) {
+    glStencilMask(0xff), glDepthMask(GL_TRUE), glDisable(GL_SCISSOR_TEST);
+    glClearColor(0, 0, 0, 0), glClearDepth(c.clearDepth), glClearStencil(c.clearStencil);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    const GLuint zero = 0;
+    glBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof zero, &zero);
+    GLuint query;
+    glGenQueries(1, &query);
+    glBeginQuery(GL_SAMPLES_PASSED, query);
+    for (const Pass& p : c.passes) {
+        static GLuint programs[3][2] = {};
+        GLuint& prog = programs[int(p.program)][p.earlyFragmentTests];
+        if (!prog) prog = program(p.program, p.earlyFragmentTests);
+        glUseProgram(prog);
+        applyState(p.state);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(p.triangles.size() * sizeof(Vertex)), p.triangles.data(), GL_STREAM_DRAW);
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(p.triangles.size()));
+    }
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &samples);
+    glDeleteQueries(1, &query);
+    GLuint runs = 0;
+    glGetBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof runs, &runs);
+    static GLubyte pixels[kSize * kSize * 4];
+    glReadPixels(0, 0, kSize, kSize, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    Counts counts;
+    counts.samplesPassed = (long long)samples, counts.invocations = runs;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            if (pixels[(y * kSize + x) * 4]) counts.markWritten(x, y);
+    std::printf("CASE %s samples=%lld invocations=%lld written=%lld hash=%llu\n", c.name.c_str(), counts.samplesPassed,
+                counts.invocations, counts.written, (unsigned long long)counts.writtenHash);
+}
+
+void setUpTarget() {
+    GLuint fbo, color, depth;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(1, &color);
+    glBindRenderbuffer(GL_RENDERBUFFER, color);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kSize, kSize);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH32F_STENCIL8, kSize, kSize);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) fail("framebuffer incomplete");
+    glViewport(0, 0, kSize, kSize);
+    GLuint vao, vbo, counter;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
+    glEnableVertexAttribArray(0);
+    glGenBuffers(1, &counter);
+    glBindBuffer(GL_ATOMIC_COUNTER_BUFFER, counter);
+    glBufferData(GL_ATOMIC_COUNTER_BUFFER, sizeof(GLuint), nullptr, GL_DYNAMIC_COPY);
+    glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, counter);
+}
+
+}  // namespace
+
+int main() {
+    makeContext();
+    std::printf("RENDERER %s | %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                reinterpret_cast<const char*>(glGetString(GL_VERSION)));
+    for (const char* ext : {"GL_ARB_shader_atomic_counters", "GL_ARB_shader_image_load_store"})
+        if (!hasExtension(ext)) fail(std::string("the GL implementation lacks ") + ext);
+    boundsSupported = hasExtension("GL_EXT_depth_bounds_test");
+    setUpTarget();
+    for (const Case& c : allCases()) {
+        if (c.needsBounds && !boundsSupported) {
+            std::printf("SKIP %s no GL_EXT_depth_bounds_test\n", c.name.c_str());
+            continue;
+        }
+        runCase(c);
+    }
+    if (glGetError() != GL_NO_ERROR) fail("a GL call failed");
+    return 0;
+}
