@@ -1,6 +1,8 @@
 """Integration test: a 4-frame, 2-tile render on a single-node Slurm cluster
 started on localhost (scripts/slurm-local.sh) equals the same frames
 rendered on this machine, bit for bit (weft diff RMSE 0 and weft check ok).
+Alongside, an untiled array over a VDB sequence whose frame 2 is not a VDB:
+that task fails with its error in its log while frames 1 and 3 render.
 One frame is then deleted and resume.py resubmits just that frame.
 Fails, with the reason, when the cluster cannot start. WEFT names the weft binary."""
 
@@ -60,6 +62,18 @@ def check_frames(d, env):
             fail("frame %d differs from the single-machine render:\n%s" % (f, diff.stdout + diff.stderr))
 
 
+def check_bad_frame(d):
+    seq = run([WEFT, "check"] + [os.path.join(d, "seq", "out.%04d.exr" % f) for f in (1, 2, 3)]).stdout.split("\n")
+    if [l.split("\t")[0] for l in seq[:3]] != ["ok", "missing", "ok"]:
+        fail("the VDB sequence should give frames 1 and 3 and no frame 2: %r" % seq)
+    logs = {n.rsplit("_", 1)[1]: open(os.path.join(d, "badlogs", n)).read() for n in os.listdir(os.path.join(d, "badlogs"))
+            if n.endswith(".log")}
+    if "weft: error:" not in logs.get("2.log", "") or "smoke.0002.vdb" not in logs.get("2.log", ""):
+        fail("frame 2's task log should hold its error naming the file: %r" % logs.get("2.log"))
+    if logs.get("1.log", "x") or logs.get("3.log", "x"):
+        fail("frames 1 and 3 should render silently: %r" % logs)
+
+
 def main():
     d = tempfile.mkdtemp(prefix="weft-slurm-test-")
     os.chmod(d, 0o755)  # munged runs as user munge and must reach its folder inside
@@ -82,8 +96,16 @@ def main():
         ids = submit("submit_slurm.py", common, env, d)
         if len(ids) != 3:
             fail("expected 3 job ids (2 tile arrays, 1 merge array), got %r" % ids)
-        wait_for(ids, env, os.path.join(d, "logs"))
+        os.makedirs(os.path.join(d, "seq"))
+        for f in (1, 3):
+            shutil.copy(os.path.join(ROOT, "data", "smoke_small.vdb"), os.path.join(d, "seq", "smoke.%04d.vdb" % f))
+        with open(os.path.join(d, "seq", "smoke.0002.vdb"), "w") as f:
+            f.write("not a vdb")
+        bad_ids = submit("submit_slurm.py", ["--frames", "1-3", "-o", "seq/out.#.exr", "--logs", "badlogs", "--name", "seq",
+                                             "--", "seq/smoke.#.vdb", "--res", "16x16"], env, d)
+        wait_for(ids + bad_ids, env, os.path.join(d, "logs"))
         check_frames(d, env)
+        check_bad_frame(d)
         logs = sorted(n for n in os.listdir(os.path.join(d, "logs")) if n.endswith(".log"))
         if len(logs) != 12:
             fail("expected 12 task logs (4 frames x 2 tiles + 4 merges), got %r" % logs)
