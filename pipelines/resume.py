@@ -11,13 +11,13 @@ submitted to Slurm as an array of just those frames (same options as
 submit_slurm.py), or rendered here one after the other with --local.
 """
 
+import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import submit_slurm  # noqa: E402
 import weftpipe  # noqa: E402
-from weftpipe import PipelineError  # noqa: E402
 
 
 def frames_to_redo(weft, output, frames):
@@ -25,6 +25,14 @@ def frames_to_redo(weft, output, frames):
     paths = {f: weftpipe.expand(output, f) for f in frames}
     status = weftpipe.frame_status(weft, list(paths.values()))
     return [(f, status[paths[f]]) for f in frames if status[paths[f]] != "ok"]
+
+
+def stray_temporaries(output):
+    """Temporary files that killed writes left beside the outputs (.NAME.weft-tmp-PID.exr)."""
+    folder = os.path.dirname(output) or "."
+    if not os.path.isdir(folder):
+        return []
+    return sorted(n for n in os.listdir(folder) if n.startswith(".") and ".weft-tmp-" in n)
 
 
 def local_commands(args, weft, render_args, frames):
@@ -57,7 +65,7 @@ def run_here(args, weft, frames):
 
 
 def main():
-    p = __import__("argparse").ArgumentParser(description=__doc__.split("\n")[1])
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
     p.add_argument("--frames", required=True, help="the run's whole frame range")
     p.add_argument("--local", action="store_true", help="render the frames here instead of submitting them")
     submit_slurm.add_submit_options(p)
@@ -70,6 +78,10 @@ def main():
     for f, state in redo:
         print("frame %d: %s" % (f, state))
     print("resume: %d of %d frames to render" % (len(redo), len(frames)))
+    stray = stray_temporaries(args.output)
+    if stray:
+        print("resume: %d temporary files from interrupted writes in %s (e.g. %s); delete them when no task runs"
+              % (len(stray), os.path.dirname(args.output) or ".", stray[0]))
     if not redo:
         return 0
     todo = [f for f, _ in redo]

@@ -130,6 +130,7 @@ class Resume(unittest.TestCase):
         self.assertTrue(any(l.startswith("frame 4: corrupt") for l in lines))
         self.assertIn("frame 5: corrupt: no weft:complete attribute", lines)
         self.assertIn("resume: 3 of 6 frames to render", lines)
+        self.assertTrue(any(l.startswith("resume: 1 temporary files from interrupted writes") for l in lines), lines)
         self.assertIn("#SBATCH --array=2,4-5", r.stdout)
 
     def test_renders_only_the_frames_that_are_not_complete(self):
