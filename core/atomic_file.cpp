@@ -1,6 +1,7 @@
 #include "core/atomic_file.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
 
@@ -22,6 +23,9 @@ AtomicOutput::~AtomicOutput() {
 }
 
 void AtomicOutput::commit() {
+    // Fault-injection hook for the kill tests: hold the finished temporary
+    // file this long before the rename, so a kill lands between the two.
+    if (const char* ms = std::getenv("WEFT_TEST_PAUSE_BEFORE_RENAME_MS")) usleep(useconds_t(std::atoi(ms)) * 1000);
     std::error_code ec;
     fs::rename(temp_, final_, ec);
     if (ec) throw Error("cannot write '" + final_ + "': " + ec.message());

@@ -37,8 +37,15 @@ bool isPreviewPath(const std::string& path) {
 }
 
 void writeExr(const Image& image, const std::string& path, const Metadata& metadata) {
+    writeExr(image, path, metadata, ImageWindow{0, 0, image.width(), image.height()});
+}
+
+void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window) {
     if (lowerExtension(path) != ".exr") throw Error("output '" + path + "': the render output must be an .exr file");
     OIIO::ImageSpec spec(image.width(), image.height(), image.channelCount(), OIIO::TypeDesc::FLOAT);
+    spec.x = window.x, spec.y = window.y;
+    spec.full_x = 0, spec.full_y = 0;
+    spec.full_width = window.fullWidth, spec.full_height = window.fullHeight;
     spec.channelnames = image.channelNames();
     spec.alpha_channel = image.channelIndex("A");
     spec.z_channel = image.channelIndex("Z");
@@ -49,7 +56,7 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
     writeWithOiio(path, spec, image.data().data());
 }
 
-Image readImage(const std::string& path, Metadata* metadata) {
+Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window) {
     if (!std::filesystem::exists(path)) throw Error("image '" + path + "': no such file");
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error("image '" + path + "': cannot be read (" + OIIO::geterror() + ")");
@@ -57,6 +64,7 @@ Image readImage(const std::string& path, Metadata* metadata) {
     Image image(spec.width, spec.height, spec.channelnames);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.data().data()))
         throw Error("image '" + path + "': " + in->geterror());
+    if (window) *window = ImageWindow{spec.x - spec.full_x, spec.y - spec.full_y, spec.full_width, spec.full_height};
     if (metadata) {
         for (const auto& attr : spec.extra_attribs)
             if (attr.type() == OIIO::TypeDesc::STRING) metadata->emplace_back(attr.name().string(), attr.get_string());

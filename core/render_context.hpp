@@ -18,6 +18,10 @@ struct RenderSettings {
     int spp = 1;
     std::uint64_t seed = 0;
     bool showProgress = false;
+    // Rows a tiled render needs, [rowBegin, rowEnd); rowEnd < 0 means all.
+    // Techniques that loop with forEachRow skip the others.
+    int rowBegin = 0;
+    int rowEnd = -1;
 };
 
 // Named wall-clock durations of passes, in the order they ran.

@@ -63,7 +63,11 @@ private:
 // aspect is width/height of the image, used to frame scenes without a camera;
 // when not given, a scene file's own resolution decides, else 1.
 // gridName picks the grid of a bare .vdb (default: "density", else the first float grid).
-Scene loadScene(const std::string& input, std::optional<double> aspect = std::nullopt, const std::string& gridName = "");
+// frame, when given, selects what varies with the frame in a scene file:
+// frame-numbered volume files ("smoke.#.vdb", see core/frames.hpp) and a
+// camera keyed by frame ("camera": {"keys": [{"frame": 1, "eye": ...}, ...]}).
+Scene loadScene(const std::string& input, std::optional<double> aspect = std::nullopt, const std::string& gridName = "",
+                std::optional<int> frame = std::nullopt);
 
 // Names of the built-in scenes, "cloud|sphere".
 const char* builtinSceneNames();

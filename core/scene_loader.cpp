@@ -6,6 +6,7 @@
 
 #include "core/analytic2d.hpp"
 #include "core/error.hpp"
+#include "core/frames.hpp"
 #include "core/json_doc.hpp"
 #include "core/params.hpp"
 #include "core/scene.hpp"
@@ -77,16 +78,50 @@ private:
 
 constexpr double kHuge = 1e30;
 
-Camera readCamera(const ObjectReader& r) {
+Camera readCamera(const ObjectReader& r, const Camera& defaults = Camera{}) {
     Camera cam;
-    cam.eye = r.vec3("eye", cam.eye);
-    cam.target = r.vec3("target", cam.target);
-    cam.up = r.vec3("up", cam.up);
-    cam.fovY = r.number("fov", cam.fovY, 0.01, 179.0);
+    cam.eye = r.vec3("eye", defaults.eye);
+    cam.target = r.vec3("target", defaults.target);
+    cam.up = r.vec3("up", defaults.up);
+    cam.fovY = r.number("fov", defaults.fovY, 0.01, 179.0);
     if ((cam.target - cam.eye).length() < 1e-12) r.fail("target", "camera.target must differ from camera.eye");
     if ((cam.target - cam.eye).cross(cam.up).length() < 1e-12 * (cam.target - cam.eye).length())
         r.fail("up", "camera.up must not be parallel to the view direction");
     return cam;
+}
+
+Camera lerpCamera(const Camera& a, const Camera& b, double t) {
+    Camera c;
+    c.eye = a.eye + (b.eye - a.eye) * t;
+    c.target = a.target + (b.target - a.target) * t;
+    c.up = a.up + (b.up - a.up) * t;
+    c.fovY = a.fovY + (b.fovY - a.fovY) * t;
+    return c;
+}
+
+// "camera": {"up": ..., "fov": ..., "keys": [{"frame": F, "eye": ..., "target": ...}, ...]}:
+// eye, target, up and fov interpolated linearly between the keys around the
+// frame, held before the first and after the last. No frame: the first key.
+Camera readKeyedCamera(const ObjectReader& r, std::optional<int> frame) {
+    const Camera base = readCamera(r);
+    const json& keys = r.value()["keys"];
+    if (!keys.is_array() || keys.empty()) r.fail("keys", "camera.keys must be a non-empty array of keys");
+    std::vector<std::pair<double, Camera>> cams;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        ObjectReader k(r.doc(), r.child("keys/" + std::to_string(i)), "camera key", {"frame", "eye", "target", "up", "fov"});
+        if (!k.has("frame")) k.failAt(k.pointer(), "a camera key needs a 'frame'");
+        const double f = k.number("frame", 0, -1e9, 1e9);
+        if (!cams.empty() && f <= cams.back().first) k.fail("frame", "camera key frames must increase");
+        cams.emplace_back(f, readCamera(k, base));
+    }
+    const double at = frame ? double(*frame) : cams.front().first;
+    if (at <= cams.front().first) return cams.front().second;
+    for (std::size_t i = 1; i < cams.size(); ++i)
+        if (at <= cams[i].first) {
+            const double t = (at - cams[i - 1].first) / (cams[i].first - cams[i - 1].first);
+            return lerpCamera(cams[i - 1].second, cams[i].second, t);
+        }
+    return cams.back().second;
 }
 
 TransferFunction readTransferFunction(const ObjectReader& r, const Volume& vol) {
@@ -115,12 +150,14 @@ TransferFunction readTransferFunction(const ObjectReader& r, const Volume& vol) 
     return TransferFunction(lo, hi, std::move(points));
 }
 
-Volume readVolume(const ObjectReader& r, const fs::path& baseDir) {
+Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
     Volume vol;
     const bool fromFile = r.has("file"), procedural = r.has("procedural");
     if (fromFile == procedural) r.failAt(r.pointer(), "a volume needs exactly one of 'file' or 'procedural'");
     // Values are read first so their own errors keep their own positions.
-    fs::path file = r.string("file", "");
+    // A frame-numbered file ("smoke.#.vdb") names the frame being rendered.
+    const std::string fileText = r.string("file", "");
+    fs::path file = frame ? expandFrameName(fileText, *frame) : fileText;
     if (file.is_relative()) file = baseDir / file;
     const std::string grid = r.string("grid", ""), kind = r.string("procedural", "");
     const int res = int(r.number("resolution", 128, 4, 1024));
@@ -213,7 +250,7 @@ void forEachInArray(const JsonDoc& doc, const std::string& pointer, const std::s
     for (std::size_t i = 0; i < arr.size(); ++i) fn(pointer + "/" + std::to_string(i));
 }
 
-Scene loadJsonScene(const std::string& path, std::optional<double> aspect) {
+Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::optional<int> frame) {
     const JsonDoc doc = JsonDoc::load(path);
     ObjectReader top(doc, "", "scene", {"camera", "volumes", "meshes", "lights", "render"});
     const fs::path baseDir = fs::path(path).parent_path();
@@ -221,7 +258,7 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect) {
     scene.source = path;
     if (top.has("volumes"))
         forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
-            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function"}), baseDir));
+            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function"}), baseDir, frame));
         });
     if (top.has("meshes"))
         forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) {
@@ -232,7 +269,10 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect) {
             scene.lights.push_back(readLight(ObjectReader(doc, p, "light", {"type", "direction", "position", "color", "intensity"})));
         });
     if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", {"technique", "resolution", "spp", "seed", "params"}), scene.render);
-    if (top.has("camera")) scene.camera = readCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov"}));
+    if (top.has("camera")) {
+        const ObjectReader cam(doc, "/camera", "camera", {"eye", "target", "up", "fov", "keys"});
+        scene.camera = cam.has("keys") ? readKeyedCamera(cam, frame) : readCamera(cam);
+    }
     else if (!scene.volumes.empty() || !scene.meshes.empty()) {
         const double sceneAspect = scene.render.width ? double(*scene.render.width) / *scene.render.height : 1.0;
         scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect.value_or(sceneAspect));
@@ -320,7 +360,8 @@ BBoxd Scene::worldBox() const {
     return box;
 }
 
-Scene loadScene(const std::string& input, std::optional<double> aspect, const std::string& gridName) {
+Scene loadScene(const std::string& input, std::optional<double> aspect, const std::string& gridName,
+                std::optional<int> frame) {
     if (!gridName.empty() && lowerExtension(input) != ".vdb") throw Error("--grid applies to a bare .vdb input; a scene file names its grids itself");
     if (input.rfind("builtin:", 0) == 0) return loadBuiltin(input.substr(8), aspect.value_or(1.0));
     const std::string ext = lowerExtension(input);
@@ -328,7 +369,7 @@ Scene loadScene(const std::string& input, std::optional<double> aspect, const st
     if (ext == ".obj" || ext == ".ply") return loadBareMesh(input, aspect.value_or(1.0));
     if (ext == ".json") {
         if (!fs::exists(input)) throw Error("scene '" + input + "': no such file");
-        return loadJsonScene(input, aspect);
+        return loadJsonScene(input, aspect, frame);
     }
     throw Error("input '" + input + "': expected a scene .json, a .vdb, .obj or .ply file or " + builtinSceneNames());
 }

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/atomic_file.hpp"
+#include "core/frames.hpp"
 #include "core/progress.hpp"
 #include "core/scene.hpp"
 #include "plugins/command.hpp"
@@ -28,9 +29,11 @@ std::pair<int, int> parseResolution(const std::string& text) {
 namespace {
 
 void checkOutputs(const RenderRequest& r) {
-    checkOutputPath(r.output, "output");
-    if (!(r.output.size() > 4 && r.output.compare(r.output.size() - 4, 4, ".exr") == 0))
-        throw Error("output '" + r.output + "': the render output must be an .exr file (use --preview for PNG)");
+    if (!r.output.empty()) {
+        checkOutputPath(r.output, "output");
+        if (!(r.output.size() > 4 && r.output.compare(r.output.size() - 4, 4, ".exr") == 0))
+            throw Error("output '" + r.output + "': the render output must be an .exr file (use --preview for PNG)");
+    }
     if (!r.preview.empty()) {
         checkOutputPath(r.preview, "preview");
         if (!isPreviewPath(r.preview)) throw Error("preview '" + r.preview + "': expected a .png, .jpg or .tif file");
@@ -71,8 +74,25 @@ Metadata metadataFor(const RenderRequest& r, const std::string& technique, const
                 {"weft:seed", std::to_string(s.seed)}, {"weft:spp", std::to_string(s.spp)}};
     for (const auto& [k, v] : params.values()) md.emplace_back("weft:param:" + k, v);
     for (const auto& [k, v] : counters) md.emplace_back("weft:counter:" + k, std::to_string(v));
-    md.emplace_back("weft:complete", "1");
     return md;
+}
+
+// Tile metadata: merge checks a set against it, and places each band.
+void addTileMetadata(Metadata& md, const std::string& tile, const ImageWindow& w, int width, int height) {
+    const auto [index, count] = parseTileSpec(tile);
+    md.emplace_back("weft:tile", std::to_string(index) + "/" + std::to_string(count));
+    md.emplace_back("weft:tile:full_resolution", std::to_string(w.fullWidth) + "x" + std::to_string(w.fullHeight));
+    md.emplace_back("weft:tile:data_window", std::to_string(w.x) + " " + std::to_string(w.y) + " " +
+                                                 std::to_string(w.x + width - 1) + " " + std::to_string(w.y + height - 1));
+}
+
+// The rows [y0, y1) of an image, all channels.
+Image cropRows(const Image& full, int y0, int y1) {
+    Image band(full.width(), y1 - y0, full.channelNames());
+    const std::size_t rowFloats = std::size_t(full.width()) * full.channelCount();
+    std::copy(full.data().begin() + std::ptrdiff_t(y0 * rowFloats), full.data().begin() + std::ptrdiff_t(y1 * rowFloats),
+              band.data().begin());
+    return band;
 }
 
 void writeStats(const RenderRequest& r, const RenderOutcome& out, int threads) {
@@ -101,6 +121,7 @@ int effectiveThreads(int requested) {
 }  // namespace
 
 RenderOutcome renderToImage(const RenderRequest& r) {
+    if (!r.tile.empty()) parseTileSpec(r.tile);  // a bad spec fails before the scene loads
     if (r.threads < 0) throw Error("--threads must be >= 0 (0 = all cores)");
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
     RenderContext ctx;
@@ -110,9 +131,15 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         aspect = double(w) / h;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const Scene scene = loadScene(r.input, aspect, r.grid);
+    const Scene scene = loadScene(r.input, aspect, r.grid, r.frame);
     ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     ctx.settings = settingsFor(r, scene);
+    RowBand band{0, ctx.settings.height};
+    if (!r.tile.empty()) {
+        const auto [index, count] = parseTileSpec(r.tile);
+        band = tileRows(ctx.settings.height, index, count);
+        ctx.settings.rowBegin = band.begin, ctx.settings.rowEnd = band.end;
+    }
 
     const std::string name = r.technique.value_or(scene.render.technique.value_or(defaultTechnique(r.sets)));
     const TechniqueInfo& info = techniques().get(name);
@@ -133,17 +160,22 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         ctx.counters.add("image.nonfinite", bad);
         std::fprintf(stderr, "weft: warning: %s produced %lld NaN/Inf values (written as 0)\n", name.c_str(), (long long)bad);
     }
+    out.window = ImageWindow{0, band.begin, out.image.width(), out.image.height()};
+    if (!r.tile.empty()) out.image = cropRows(out.image, band.begin, band.end);
     out.counters = ctx.counters.merged();
     out.metadata = metadataFor(r, name, params, ctx.settings, out.counters);
+    if (r.frame) out.metadata.emplace_back("weft:frame", std::to_string(*r.frame));
+    if (!r.tile.empty()) addTileMetadata(out.metadata, r.tile, out.window, out.image.width(), out.image.height());
+    out.metadata.emplace_back("weft:complete", "1");
     out.timingsMs = ctx.timings.entries();
     return out;
 }
 
-void runRender(const RenderRequest& r) {
+RenderOutcome runRender(const RenderRequest& r) {
     checkOutputs(r);
     RenderOutcome out = renderToImage(r);
     const auto t0 = std::chrono::steady_clock::now();
-    writeExr(out.image, r.output, out.metadata);
+    if (!r.output.empty()) writeExr(out.image, r.output, out.metadata, out.window);
     if (!r.preview.empty()) writePreview(out.image, r.preview);
     out.timingsMs.emplace_back("write", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (!r.stats.empty()) writeStats(r, out, effectiveThreads(r.threads));
@@ -153,6 +185,42 @@ void runRender(const RenderRequest& r) {
         std::printf("timings:\n");
         for (const auto& [k, v] : out.timingsMs) std::printf("  %-24s %12.1f ms\n", k.c_str(), v);
     }
+    return out;
+}
+
+std::vector<RenderRequest> requestsForFrames(const RenderRequest& r, const std::vector<int>& frames) {
+    if (frames.size() > 1) {
+        const std::pair<const char*, const std::string*> named[] = {{"output", &r.output}, {"preview", &r.preview}, {"stats", &r.stats}};
+        for (const auto& [what, name] : named)
+            if (!name->empty() && !hasFrameWildcard(*name))
+                throw Error(std::string(what) + " '" + *name + "' has no frame number (# = 4 digits, @ = 1 digit, e.g. out.#.exr) for " +
+                            std::to_string(frames.size()) + " frames");
+    }
+    std::vector<RenderRequest> out;
+    for (int f : frames) {
+        RenderRequest q = r;
+        q.frame = f;
+        for (std::string* name : {&q.input, &q.output, &q.preview, &q.stats}) *name = expandFrameName(*name, f);
+        out.push_back(std::move(q));
+    }
+    return out;
+}
+
+int runRenders(const std::vector<RenderRequest>& requests) {
+    for (const RenderRequest& q : requests) checkOutputs(q);  // unwritable outputs fail before any render
+    int failed = 0;
+    for (const RenderRequest& q : requests) {
+        try {
+            runRender(q);
+        } catch (const std::exception& e) {
+            ++failed;
+            const std::string frame = q.frame ? "frame " + std::to_string(*q.frame) + ": " : "";
+            std::fprintf(stderr, "weft: error: %s%s\n", frame.c_str(), e.what());
+        }
+    }
+    if (failed && requests.size() > 1)
+        std::fprintf(stderr, "weft: %d of %zu renders failed\n", failed, requests.size());
+    return failed;
 }
 
 }  // namespace weft

@@ -16,7 +16,7 @@ namespace weft {
 
 struct RenderRequest {
     std::string input;            // scene .json, .vdb or builtin:NAME
-    std::string output;           // .exr
+    std::string output;           // .exr ("" in a chain: a later step writes)
     std::string preview;          // optional .png/.jpg
     std::string stats;            // optional .json
     std::string grid;             // grid of a bare .vdb input
@@ -27,10 +27,13 @@ struct RenderRequest {
     std::optional<std::uint64_t> seed;
     int threads = 0;  // 0: all cores
     bool verbose = false;
+    std::optional<int> frame;  // the frame a scene file is loaded at (names already expanded)
+    std::string tile;          // "i/n": render only row band i of n (core/frames.hpp); "" = all
 };
 
 struct RenderOutcome {
-    Image image;
+    Image image;          // the whole frame, or the tile's rows only
+    ImageWindow window;   // where image lies in the frame
     Metadata metadata;  // what went into the EXR header
     CounterMap counters;
     std::vector<std::pair<std::string, double>> timingsMs;
@@ -38,8 +41,18 @@ struct RenderOutcome {
 
 // Renders without writing anything (tests and chains use this directly).
 RenderOutcome renderToImage(const RenderRequest& request);
-// Renders and writes the requested files.
-void runRender(const RenderRequest& request);
+// Renders and writes the requested files (the EXR only when output is set);
+// returns what was rendered, for operations chained after it.
+RenderOutcome runRender(const RenderRequest& request);
+
+// One request per frame: names with a frame wildcard (input, output,
+// preview, stats) expanded, frame set. Several frames need a wildcard in
+// every output name, or they would overwrite each other: an Error says so.
+std::vector<RenderRequest> requestsForFrames(const RenderRequest& request, const std::vector<int>& frames);
+
+// Renders each request in turn; a failing one prints its error (naming the
+// frame) and the others go on. Returns how many failed.
+int runRenders(const std::vector<RenderRequest>& requests);
 
 // "WxH" -> (W, H), each in [1, 65536]; anything else is an error naming the text.
 std::pair<int, int> parseResolution(const std::string& text);

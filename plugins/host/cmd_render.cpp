@@ -1,16 +1,42 @@
-// weft render INPUT -o OUT.exr [options]: one frame of a scene.
+// weft render INPUT -o OUT.exr [options]: one frame, a frame range
+// (--frames, names with # or @) or one tile of a frame (--tile i/n).
+// Without -o the image waits for chained steps (see chain.hpp).
+#include "core/frames.hpp"
 #include "plugins/command.hpp"
+#include "plugins/host/chain.hpp"
 #include "plugins/render_job.hpp"
 
 namespace weft {
 
 namespace {
 
+struct RenderCommand {
+    RenderRequest request;
+    std::string frames;
+};
+
+void renderFrames(const RenderCommand& c) {
+    if (c.request.output.empty()) throw Error("--frames needs -o with a frame number, e.g. -o out.#.exr");
+    const auto requests = requestsForFrames(c.request, parseFrameRange(c.frames));
+    if (runRenders(requests) > 0) commandExitStatus() = 1;
+    chainState().wroteFile = true;
+}
+
+void renderOne(const RenderCommand& c) {
+    RenderOutcome out = runRender(c.request);
+    ChainState& chain = chainState();
+    chain.wroteFile = chain.wroteFile || !c.request.output.empty() || !c.request.preview.empty();
+    chain.current = ChainImage{std::move(out.image), std::move(out.metadata), out.window, {}};
+}
+
 const CommandRegistrar registrar{{"render", 10, [](CLI::App& app) {
     auto* cmd = app.add_subcommand("render", "render a scene (.json), a bare .vdb or builtin:NAME to an EXR");
-    auto r = std::make_shared<RenderRequest>();
-    cmd->add_option("input", r->input, "scene .json, .vdb file, or builtin:cloud|builtin:sphere")->required();
-    cmd->add_option("-o,--output", r->output, "output EXR (RGBA + AOVs + metadata)")->required();
+    auto c = std::make_shared<RenderCommand>();
+    RenderRequest* r = &c->request;
+    cmd->add_option("input", r->input, "scene .json, .vdb file, or builtin:cloud|builtin:sphere; # or @ = frame number")->required();
+    cmd->add_option("-o,--output", r->output, "output EXR (RGBA + AOVs + metadata); # or @ = frame number");
+    cmd->add_option("--frames", c->frames, "frames to render, e.g. 1001-1100x2, 1,3,5-9, -5--1");
+    cmd->add_option("--tile", r->tile, "render only tile i of n (1-based horizontal bands), e.g. 2/4; merge with `weft merge`");
     cmd->add_option("--preview", r->preview, "also write a display-referred PNG/JPEG through OpenColorIO");
     cmd->add_option("--stats", r->stats, "write counters, timings and parameters as JSON");
     cmd->add_option("--grid", r->grid, "grid to render from a bare .vdb (default: density, else the first float grid)");
@@ -21,7 +47,8 @@ const CommandRegistrar registrar{{"render", 10, [](CLI::App& app) {
     cmd->add_option("--seed", r->seed, "random seed (same seed, same image)");
     cmd->add_option("--threads", r->threads, "worker threads, 0 = all cores");
     cmd->add_flag("-v,--verbose", r->verbose, "print the counter table and timings");
-    cmd->callback([r] { runRender(*r); });
+    cmd->callback([c] { c->frames.empty() ? renderOne(*c) : renderFrames(*c); });
+    cmd->immediate_callback();  // chained steps run in command-line order
 }}};
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "plugins/command.hpp"
+#include "plugins/host/chain.hpp"
 #include "plugins/plugin_api.hpp"
 
 namespace {
@@ -19,7 +20,7 @@ void listPlugins() {
 int run(int argc, char** argv) {
     CLI::App app{"weft: offline renderer of OpenVDB volumes and meshes with sampling techniques from the literature"};
     app.set_version_flag("--version", std::string("weft ") + WEFT_VERSION);
-    app.require_subcommand(0, 1);
+    app.require_subcommand(0, 0);  // any number: steps chain (plugins/host/chain.hpp)
     bool list = false;
     app.add_flag("--list-plugins", list, "list the registered techniques, one per line");
     weft::loadExternalPlugins();
@@ -35,6 +36,8 @@ int run(int argc, char** argv) {
     }
     if (list) listPlugins();
     else if (app.get_subcommands().empty()) std::cout << app.help();
+    else if (weft::chainState().current && !weft::chainState().wroteFile)
+        throw weft::Error("nothing written: give render -o FILE.exr, --preview, or a 'write' step");
     return weft::commandExitStatus();
 }
 
