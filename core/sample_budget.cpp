@@ -221,15 +221,10 @@ std::int64_t SampleBatches::size(std::int64_t batch) const {
 }
 
 void SampleBatches::fill(std::int64_t batch, std::vector<std::uint32_t>& samplePixel) const {
-    const std::int64_t b0 = begin(batch), b1 = b0 + size(batch);
-    samplePixel.resize(std::size_t(b1 - b0));
-    const std::size_t first = std::size_t(std::upper_bound(offsets_.begin(), offsets_.end(), b0) - offsets_.begin()) - 1;
-    const std::size_t last = std::size_t(std::lower_bound(offsets_.begin(), offsets_.end(), b1) - offsets_.begin());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            const std::int64_t s0 = std::max(offsets_[i], b0), s1 = std::min(offsets_[i + 1], b1);
-            for (std::int64_t s = s0; s < s1; ++s) samplePixel[std::size_t(s - b0)] = std::uint32_t(i);
-        }
+    const std::int64_t b0 = begin(batch);
+    samplePixel.resize(std::size_t(size(batch)));
+    forEachPixelRun(batch, [&](std::uint32_t pixel, std::int64_t s0, std::int64_t s1) {
+        for (std::int64_t s = s0; s < s1; ++s) samplePixel[std::size_t(s - b0)] = pixel;
     });
 }
 

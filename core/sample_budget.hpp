@@ -40,6 +40,10 @@
 //    a fixed size (the paper uses the resolution), filling for each batch a
 //    sample-to-pixel buffer; a pixel's samples are contiguous and may span
 //    batch boundaries.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -90,6 +94,10 @@ public:
     std::int64_t size(std::int64_t batch) const;
     // The pixel of every sample of `batch`: samplePixel[k] for global sample begin(batch) + k.
     void fill(std::int64_t batch, std::vector<std::uint32_t>& samplePixel) const;
+    // fn(pixel, s0, s1) for every pixel with samples [s0, s1) in `batch`
+    // (global indices), in parallel; each pixel's run is visited once.
+    template <class Fn>
+    void forEachPixelRun(std::int64_t batch, Fn fn) const;
     // Index of a global sample among its pixel's samples.
     std::uint32_t indexInPixel(std::int64_t sample, std::uint32_t pixel) const {
         return std::uint32_t(sample - offsets_[pixel]);
@@ -99,5 +107,18 @@ private:
     const std::vector<std::int64_t>& offsets_;
     std::int64_t batchSize_, batches_;
 };
+
+template <class Fn>
+void SampleBatches::forEachPixelRun(std::int64_t batch, Fn fn) const {
+    const std::int64_t b0 = begin(batch), b1 = b0 + size(batch);
+    const std::size_t first = std::size_t(std::upper_bound(offsets_.begin(), offsets_.end(), b0) - offsets_.begin()) - 1;
+    const std::size_t last = std::size_t(std::lower_bound(offsets_.begin(), offsets_.end(), b1) - offsets_.begin());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const std::int64_t s0 = std::max(offsets_[i], b0), s1 = std::min(offsets_[i + 1], b1);
+            if (s0 < s1) fn(std::uint32_t(i), s0, s1);
+        }
+    });
+}
 
 }  // namespace weft
