@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/error.hpp"
+#include "core/mesh_accel.hpp"
 
 namespace weft {
 
@@ -107,6 +108,7 @@ void atrousFilter(std::vector<float>& color, int width, int height, const Geomet
         const Level l{width, height, 1 << level, inverseSquare(sigmaColor), inverseSquare(s.sigmaNormal),
                       inverseSquare(s.sigmaPosition), guides, color, valid};
         tbb::parallel_for(0, height, [&](int y) {
+            enableFastFloatMode();  // every thread the same: tiny weights flush to 0 alike
             for (int x = 0; x < width; ++x) {
                 const std::size_t p = std::size_t(y) * width + x;
                 validNext[p] = filterPixel(l, x, y, &next[3 * p]) ? 1 : 0;

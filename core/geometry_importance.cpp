@@ -9,18 +9,24 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "core/error.hpp"
+#include "core/mesh_accel.hpp"
 #include "core/sample_budget.hpp"
 
 namespace weft {
 
 namespace {
 
-// e^-x for x >= 0 (a NaN reads as "far": e^-80), relative error below 4e-7, exactly 1 at 0:
+// e^-x for x >= +0 (NaN reads as "far": e^-80), relative error below 4e-7, exactly 1 at 0:
 // 2^-t as 2^-floor(t) (exponent bits) times a degree-5 fit of 2^-f on [0, 1).
+// The clamp compares the bits as unsigned integers (monotone for x >= +0;
+// every NaN is above 80), which vectorises where a float compare does not.
 inline float expNegative(float x) {
-    x = std::min(80.0f, x);
+    constexpr std::uint32_t kLimit = std::bit_cast<std::uint32_t>(80.0f);
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(x);
+    x = std::bit_cast<float>(bits < kLimit ? bits : kLimit);
     const float t = x * 1.44269504f;
     const int i = int(t);
     const float f = t - float(i);
@@ -43,7 +49,7 @@ struct Planes {
 
 // acc[x] += weight between (x, y) and (x + dx, y + dy) for every x with both inside.
 template <bool UseN, bool UseP>
-void accumulateOffset(const Planes& g, int width, int y, int dx, int dy, float* __restrict acc) {
+inline __attribute__((always_inline)) void accumulateOffset(const Planes& g, int width, int y, int dx, int dy, float* __restrict acc) {
     const int x0 = std::max(0, -dx), x1 = std::min(width, width - dx);
     const std::size_t a = std::size_t(y) * width + x0, b = std::size_t(y + dy) * width + std::size_t(x0 + dx);
     acc += x0;
@@ -63,8 +69,9 @@ void accumulateOffset(const Planes& g, int width, int y, int dx, int dy, float* 
     }
 }
 
+// Cloned for AVX2 + FMA, picked at load time where the CPU has them.
 template <bool UseN, bool UseP>
-void importanceRow(const Planes& g, int width, int height, const Window& win, int y, float* acc, float* out) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void importanceRow(const Planes& g, int width, int height, const Window& win, int y, float* acc, float* out) {
     std::fill(acc, acc + width, 1.0f);  // the pixel itself
     for (int dy = win.lo; dy <= win.hi; ++dy) {
         if (y + dy < 0 || y + dy >= height) continue;
@@ -109,6 +116,7 @@ std::vector<float> geometryImportance(const GeometryGuides& guides, const Import
     const RowFn row = pickRow(useN, useP);
     std::vector<float> importance(pixels);
     tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
+        enableFastFloatMode();  // same floating-point mode on every thread
         std::vector<float> acc(static_cast<std::size_t>(width));
         for (int y = r.begin(); y != r.end(); ++y) row(g, width, height, win, y, acc.data(), importance.data() + std::size_t(y) * width);
     });

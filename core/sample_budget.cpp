@@ -21,7 +21,7 @@ namespace weft {
 namespace {
 
 constexpr std::int64_t kMaxBudget = std::int64_t(1) << 40;
-constexpr std::size_t kBlock = 16384;  // pixels per parallel block
+constexpr std::size_t kBlock = 32768;  // pixels per parallel block
 constexpr int kBuckets = 4096;         // histogram of fractional parts
 
 std::size_t blockCount(std::size_t n) { return (n + kBlock - 1) / kBlock; }
@@ -62,17 +62,17 @@ Survey survey(const std::vector<float>& w, const std::vector<std::uint8_t>& acti
 }
 
 // Importance as integer weights: +Inf pixels 1 and the rest 0 when any is
-// infinite; else up to 2^bits relative to the largest; else 1 everywhere.
-std::vector<std::uint64_t> integerWeights(const std::vector<float>& w, const std::vector<std::uint8_t>& active,
+// infinite; else up to 2^bits (<= 2^31) relative to the largest; else 1 everywhere.
+std::vector<std::uint32_t> integerWeights(const std::vector<float>& w, const std::vector<std::uint8_t>& active,
                                           const Survey& s, int bits) {
-    std::vector<std::uint64_t> u(w.size(), 0);
+    std::vector<std::uint32_t> u(w.size(), 0);
     const double scale = s.maxFinite > 0 ? std::ldexp(1.0, bits) / double(s.maxFinite) : 0.0;
     forBlocks(w.size(), [&](std::size_t, std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i) {
             if (!isActive(active, i)) continue;
             const float v = w[i];
             if (s.infinite > 0) u[i] = v == std::numeric_limits<float>::infinity() ? 1 : 0;
-            else if (s.maxFinite > 0) u[i] = v > 0 ? std::uint64_t(double(v) * scale + 0.5) : 0;
+            else if (s.maxFinite > 0) u[i] = v > 0 ? std::uint32_t(double(v) * scale + 0.5) : 0;
             else u[i] = 1;
         }
     });
@@ -95,37 +95,58 @@ std::uint32_t tieHash(std::uint64_t seed, std::size_t i) { return std::uint32_t(
 
 struct Quotas {
     std::vector<std::uint64_t> remainder;
-    std::vector<std::uint16_t> bucket;  // monotone in the remainder
     std::vector<std::int64_t> histogram = std::vector<std::int64_t>(kBuckets, 0);
     std::int64_t floors = 0;
     bool overflow = false;  // a pixel's count would not fit 32 bits
 };
 
+// Histogram bucket of a remainder: monotone in it (exact integers in, one
+// rounding division, a power-of-two scale), so bucket order never
+// contradicts remainder order.
+int bucketOf(std::uint64_t rem, double toBucket) {
+    return int(std::min<double>(kBuckets - 1, double(std::int64_t(rem)) * toBucket));  // rem < 2^63
+}
+
+// floor(prod / sum) and prod mod sum, exactly: a floating-point estimate
+// (off by at most one for quotients below 2^50) corrected in integers,
+// cheaper than a 64-bit division.
+void divide(std::uint64_t prod, std::uint64_t sum, double inverse, std::uint64_t& whole, std::uint64_t& rem) {
+    whole = std::uint64_t(double(std::int64_t(prod)) * inverse);  // prod < 2^62
+    rem = prod - whole * sum;  // modulo 2^64: "negative" when the estimate is high
+    while (std::int64_t(rem) < 0) --whole, rem += sum;
+    while (rem >= sum) ++whole, rem -= sum;
+}
+
 // counts[i] = minimum + floor(free u_i / S); the remainders and their histogram.
-Quotas integerQuotas(const std::vector<std::uint64_t>& u, const std::vector<std::uint8_t>& active, std::uint64_t sum,
+Quotas integerQuotas(const std::vector<std::uint32_t>& u, const std::vector<std::uint8_t>& active, std::uint64_t sum,
                      std::int64_t freeSamples, int minimum, std::vector<std::uint32_t>& counts) {
     Quotas q;
-    q.remainder.assign(u.size(), 0), q.bucket.assign(u.size(), 0);
-    std::vector<std::vector<std::int64_t>> hist(blockCount(u.size()));
+    q.remainder.resize(u.size());
+    std::vector<std::vector<std::int32_t>> hist(blockCount(u.size()));
     std::vector<std::int64_t> floors(hist.size(), 0);
     std::vector<std::uint8_t> overflow(hist.size(), 0);
     const std::uint64_t freeU = std::uint64_t(freeSamples);
-    const double toBucket = double(kBuckets) / double(sum);
+    const double toBucket = double(kBuckets) / double(sum), inverse = 1.0 / double(sum);
     forBlocks(u.size(), [&](std::size_t b, std::size_t i0, std::size_t i1) {
-        std::vector<std::int64_t> h(kBuckets, 0);
+        std::vector<std::int32_t> h(kBuckets, 0);
         std::int64_t f = 0;
+        std::uint64_t* remainder = q.remainder.data();
+        std::uint32_t* c = counts.data();
+        const std::uint32_t* weight = u.data();
+        const std::uint8_t* act = active.empty() ? nullptr : active.data();
         for (std::size_t i = i0; i < i1; ++i) {
-            if (!isActive(active, i)) continue;
-            const std::uint64_t prod = freeU * u[i], whole = prod / sum, rem = prod - whole * sum;
+            remainder[i] = 0;
+            if (act && !act[i]) continue;
+            std::uint64_t whole, rem;
+            divide(freeU * weight[i], sum, inverse, whole, rem);
             if (whole + std::uint64_t(minimum) >= std::numeric_limits<std::uint32_t>::max()) {
                 overflow[b] = 1;
                 continue;
             }
-            counts[i] = std::uint32_t(minimum + std::int64_t(whole));
+            c[i] = std::uint32_t(minimum + std::int64_t(whole));
             f += std::int64_t(whole);
-            q.remainder[i] = rem;
-            q.bucket[i] = std::uint16_t(std::min<double>(kBuckets - 1, double(rem) * toBucket));
-            ++h[q.bucket[i]];
+            remainder[i] = rem;
+            ++h[std::size_t(bucketOf(rem, toBucket))];
         }
         hist[b] = std::move(h), floors[b] = f;
     });
@@ -138,18 +159,23 @@ Quotas integerQuotas(const std::vector<std::uint64_t>& u, const std::vector<std:
 }
 
 // One more sample each for the `leftover` pixels with the largest remainders.
-void placeLeftover(const Quotas& q, const std::vector<std::uint8_t>& active, std::int64_t leftover, std::uint64_t seed,
-                   std::vector<std::uint32_t>& counts) {
+void placeLeftover(const Quotas& q, const std::vector<std::uint8_t>& active, std::int64_t leftover, std::uint64_t sum,
+                   std::uint64_t seed, std::vector<std::uint32_t>& counts) {
     if (leftover <= 0) return;
     int threshold = kBuckets - 1;
     std::int64_t above = 0;
     while (above + q.histogram[std::size_t(threshold)] < leftover) above += q.histogram[std::size_t(threshold--)];
+    const double toBucket = double(kBuckets) / double(sum);
     std::vector<std::vector<RemainderKey>> parts(blockCount(counts.size()));
     forBlocks(counts.size(), [&](std::size_t b, std::size_t i0, std::size_t i1) {
+        const std::uint64_t* rem = q.remainder.data();  // locals: no reloads through references
+        std::uint32_t* c = counts.data();
+        const std::uint8_t* act = active.empty() ? nullptr : active.data();
         for (std::size_t i = i0; i < i1; ++i) {
-            if (!isActive(active, i) || q.bucket[i] < threshold) continue;
-            if (q.bucket[i] > threshold) ++counts[i];
-            else parts[b].push_back({q.remainder[i], tieHash(seed, i), std::uint32_t(i)});
+            if (act && !act[i]) continue;
+            const int bucket = bucketOf(rem[i], toBucket);
+            c[i] += bucket > threshold ? 1u : 0u;  // branch-free: remainders are noise
+            if (bucket == threshold) parts[b].push_back({rem[i], tieHash(seed, i), std::uint32_t(i)});
         }
     });
     std::vector<RemainderKey> candidates;
@@ -179,14 +205,14 @@ SampleCounts apportionSamples(const std::vector<float>& importance, const std::v
     if (s.active == 0) return out;
     out.minimum = int(std::min<std::int64_t>(r.minimum, r.budget / s.active));
     const std::int64_t freeSamples = r.budget - std::int64_t(out.minimum) * s.active;
-    const int bits = std::min(32, 62 - int(std::bit_width(std::uint64_t(freeSamples))));
-    const std::vector<std::uint64_t> u = integerWeights(importance, active, s, bits);
+    const int bits = std::min(31, 62 - int(std::bit_width(std::uint64_t(freeSamples))));
+    const std::vector<std::uint32_t> u = integerWeights(importance, active, s, bits);
     std::uint64_t sum = 0;
-    for (std::uint64_t v : u) sum += v;
+    for (std::uint32_t v : u) sum += v;
     if (sum == 0) throw Error("internal: sample budget weights sum to zero");
     const Quotas q = integerQuotas(u, active, sum, freeSamples, out.minimum, out.counts);
     if (q.overflow) throw Error("sample budget " + std::to_string(r.budget) + " puts more than 2^32 - 2 samples on one pixel");
-    placeLeftover(q, active, freeSamples - q.floors, r.tieSeed, out.counts);
+    placeLeftover(q, active, freeSamples - q.floors, sum, r.tieSeed, out.counts);
     out.total = r.budget;
     return out;
 }

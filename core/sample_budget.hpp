@@ -19,7 +19,7 @@
 //    (pixel index, tie seed), then by the lower index: deterministic, but
 //    not biased towards the top of the image. The counts always sum to the
 //    budget exactly (unlike the paper, which drops the rounding remainder).
-//    Importance is quantised to integers (up to 32 bits relative to the
+//    Importance is quantised to integers (up to 31 bits relative to the
 //    largest value) so the method is exact integer arithmetic: the same
 //    counts on every machine and thread count.
 //    Extremes (reported in SampleCounts, never silent):

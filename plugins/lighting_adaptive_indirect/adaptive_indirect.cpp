@@ -96,12 +96,15 @@ std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
         });
         // Store: each pixel adds its samples in order, so batches change nothing.
         batches.forEachPixelRun(b, [&](std::uint32_t pixel, std::int64_t s0, std::int64_t s1) {
+            enableFastFloatMode();
             for (std::int64_t s = s0; s < s1; ++s)
                 for (int c = 0; c < 3; ++c) sums[3 * pixel + c] += results[std::size_t(s - b0)][c];
         });
     }
-    for (std::size_t i = 0; i < counts.size(); ++i)
+    tbb::parallel_for(std::size_t(0), counts.size(), [&](std::size_t i) {
+        enableFastFloatMode();
         for (int c = 0; c < 3; ++c) sums[3 * i + c] = counts[i] ? sums[3 * i + c] / float(counts[i]) : std::nanf("");
+    });
     counters.add("samples.indirect", offsets.back());
     return sums;
 }
