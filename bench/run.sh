@@ -3,3 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 bench/kraus_tables.py "$@"
+/usr/bin/python3 bench/bauszat_tables.py

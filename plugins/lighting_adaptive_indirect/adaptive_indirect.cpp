@@ -204,7 +204,7 @@ ParamTable table() {
     std::vector<ParamSpec> specs = {
         enumParam("mode", "adaptive_atrous", {"uniform", "uniform_atrous", "adaptive_atrous"},
                   "indirect samples: spp at every pixel (unfiltered or A-Trous filtered), or the same budget apportioned by geometric importance and filtered"),
-        intParam("min_samples", 1, 0, 1 << 20, "adaptive: indirect samples every surface pixel gets at least"),
+        intParam("min_samples", 2, 0, 1 << 20, "adaptive: indirect samples every surface pixel gets at least (the paper: 1 or 2)"),
         intParam("window", 4, 2, 10, "adaptive: k x k window of the importance map (W_p of the normal/position weights)"),
         intParam("bounces", 2, 1, 64, "indirect bounces (1: light reflected once on its way to the pixel)"),
         intParam("rr_depth", 3, 1, 1024, "path vertices (the pixel's surface is 1) before Russian roulette may end a path"),
