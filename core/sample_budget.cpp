@@ -62,21 +62,32 @@ Survey survey(const std::vector<float>& w, const std::vector<std::uint8_t>& acti
 }
 
 // Importance as integer weights: +Inf pixels 1 and the rest 0 when any is
-// infinite; else up to 2^bits (<= 2^31) relative to the largest; else 1 everywhere.
-std::vector<std::uint32_t> integerWeights(const std::vector<float>& w, const std::vector<std::uint8_t>& active,
-                                          const Survey& s, int bits) {
-    std::vector<std::uint32_t> u(w.size(), 0);
-    const double scale = s.maxFinite > 0 ? std::ldexp(1.0, bits) / double(s.maxFinite) : 0.0;
-    forBlocks(w.size(), [&](std::size_t, std::size_t i0, std::size_t i1) {
-        for (std::size_t i = i0; i < i1; ++i) {
-            if (!isActive(active, i)) continue;
-            const float v = w[i];
-            if (s.infinite > 0) u[i] = v == std::numeric_limits<float>::infinity() ? 1 : 0;
-            else if (s.maxFinite > 0) u[i] = v > 0 ? std::uint32_t(double(v) * scale + 0.5) : 0;
-            else u[i] = 1;
-        }
+// infinite; else up to 2^bits (<= 2^31) relative to the largest; else 1
+// everywhere. Computed where needed rather than stored.
+struct Quantiser {
+    bool infinite, uniform;
+    double scale;
+    Quantiser(const Survey& s, int bits)
+        : infinite(s.infinite > 0), uniform(s.maxFinite <= 0),
+          scale(s.maxFinite > 0 ? std::ldexp(1.0, bits) / double(s.maxFinite) : 0.0) {}
+    std::uint32_t operator()(float v) const {
+        if (infinite) return v == std::numeric_limits<float>::infinity() ? 1 : 0;
+        if (uniform) return 1;
+        return v > 0 ? std::uint32_t(double(v) * scale + 0.5) : 0;
+    }
+};
+
+std::uint64_t weightSum(const std::vector<float>& w, const std::vector<std::uint8_t>& active, const Quantiser& quantise) {
+    std::vector<std::uint64_t> parts(blockCount(w.size()), 0);
+    forBlocks(w.size(), [&](std::size_t b, std::size_t i0, std::size_t i1) {
+        std::uint64_t sum = 0;
+        for (std::size_t i = i0; i < i1; ++i)
+            if (isActive(active, i)) sum += quantise(w[i]);
+        parts[b] = sum;
     });
-    return u;
+    std::uint64_t sum = 0;
+    for (std::uint64_t v : parts) sum += v;
+    return sum;
 }
 
 // Order of the leftover samples: larger remainder first, then larger tie
@@ -118,27 +129,27 @@ void divide(std::uint64_t prod, std::uint64_t sum, double inverse, std::uint64_t
 }
 
 // counts[i] = minimum + floor(free u_i / S); the remainders and their histogram.
-Quotas integerQuotas(const std::vector<std::uint32_t>& u, const std::vector<std::uint8_t>& active, std::uint64_t sum,
-                     std::int64_t freeSamples, int minimum, std::vector<std::uint32_t>& counts) {
+Quotas integerQuotas(const std::vector<float>& w, const Quantiser& quantise, const std::vector<std::uint8_t>& active,
+                     std::uint64_t sum, std::int64_t freeSamples, int minimum, std::vector<std::uint32_t>& counts) {
     Quotas q;
-    q.remainder.resize(u.size());
-    std::vector<std::vector<std::int32_t>> hist(blockCount(u.size()));
+    q.remainder.resize(w.size());
+    std::vector<std::vector<std::int32_t>> hist(blockCount(w.size()));
     std::vector<std::int64_t> floors(hist.size(), 0);
     std::vector<std::uint8_t> overflow(hist.size(), 0);
     const std::uint64_t freeU = std::uint64_t(freeSamples);
     const double toBucket = double(kBuckets) / double(sum), inverse = 1.0 / double(sum);
-    forBlocks(u.size(), [&](std::size_t b, std::size_t i0, std::size_t i1) {
+    forBlocks(w.size(), [&](std::size_t b, std::size_t i0, std::size_t i1) {
         std::vector<std::int32_t> h(kBuckets, 0);
         std::int64_t f = 0;
         std::uint64_t* remainder = q.remainder.data();
         std::uint32_t* c = counts.data();
-        const std::uint32_t* weight = u.data();
+        const float* importance = w.data();
         const std::uint8_t* act = active.empty() ? nullptr : active.data();
         for (std::size_t i = i0; i < i1; ++i) {
             remainder[i] = 0;
             if (act && !act[i]) continue;
             std::uint64_t whole, rem;
-            divide(freeU * weight[i], sum, inverse, whole, rem);
+            divide(freeU * quantise(importance[i]), sum, inverse, whole, rem);
             if (whole + std::uint64_t(minimum) >= std::numeric_limits<std::uint32_t>::max()) {
                 overflow[b] = 1;
                 continue;
@@ -206,11 +217,10 @@ SampleCounts apportionSamples(const std::vector<float>& importance, const std::v
     out.minimum = int(std::min<std::int64_t>(r.minimum, r.budget / s.active));
     const std::int64_t freeSamples = r.budget - std::int64_t(out.minimum) * s.active;
     const int bits = std::min(31, 62 - int(std::bit_width(std::uint64_t(freeSamples))));
-    const std::vector<std::uint32_t> u = integerWeights(importance, active, s, bits);
-    std::uint64_t sum = 0;
-    for (std::uint32_t v : u) sum += v;
+    const Quantiser quantise(s, bits);
+    const std::uint64_t sum = weightSum(importance, active, quantise);
     if (sum == 0) throw Error("internal: sample budget weights sum to zero");
-    const Quotas q = integerQuotas(u, active, sum, freeSamples, out.minimum, out.counts);
+    const Quotas q = integerQuotas(importance, quantise, active, sum, freeSamples, out.minimum, out.counts);
     if (q.overflow) throw Error("sample budget " + std::to_string(r.budget) + " puts more than 2^32 - 2 samples on one pixel");
     placeLeftover(q, active, freeSamples - q.floors, sum, r.tieSeed, out.counts);
     out.total = r.budget;
