@@ -69,9 +69,9 @@ inline __attribute__((always_inline)) void accumulateOffset(const Planes& g, int
     }
 }
 
-// Cloned for AVX2 + FMA, picked at load time where the CPU has them.
+// Cloned for AVX-512 and for AVX2 + FMA, picked at load time by what the CPU has.
 template <bool UseN, bool UseP>
-__attribute__((target_clones("arch=x86-64-v3", "default"))) void importanceRow(const Planes& g, int width, int height, const Window& win, int y, float* acc, float* out) {
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void importanceRow(const Planes& g, int width, int height, const Window& win, int y, float* acc, float* out) {
     std::fill(acc, acc + width, 1.0f);  // the pixel itself
     for (int dy = win.lo; dy <= win.hi; ++dy) {
         if (y + dy < 0 || y + dy >= height) continue;

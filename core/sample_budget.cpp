@@ -122,7 +122,7 @@ int bucketOf(std::uint64_t rem, double toBucket) {
 // (off by at most one for quotients below 2^50) corrected in integers,
 // cheaper than a 64-bit division.
 void divide(std::uint64_t prod, std::uint64_t sum, double inverse, std::uint64_t& whole, std::uint64_t& rem) {
-    whole = std::uint64_t(double(std::int64_t(prod)) * inverse);  // prod < 2^62
+    whole = std::uint64_t(std::int64_t(double(std::int64_t(prod)) * inverse));  // prod < 2^62: signed conversions are one instruction
     rem = prod - whole * sum;  // modulo 2^64: "negative" when the estimate is high
     while (std::int64_t(rem) < 0) --whole, rem += sum;
     while (rem >= sum) ++whole, rem -= sum;
