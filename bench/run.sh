@@ -7,3 +7,4 @@ build/bin/hwsim_throughput
 python3 bench/kraus_tables.py "$@"
 /usr/bin/python3 bench/volume_vs_vdb_render.py "$@"
 /usr/bin/python3 bench/segovia_tables.py
+/usr/bin/python3 bench/bauszat_tables.py

@@ -1,0 +1,227 @@
+// lighting.adaptive_indirect — adaptive sampling of the incident indirect
+// illumination for a geometry-aware filter (Bauszat et al. 2011), filtered
+// with the edge-avoiding A-Trous wavelet transform (Dammertz et al. 2010).
+//
+// A G-buffer (one ray through each pixel centre) gives normals and
+// positions. The indirect budget is `spp` (the uniform rate) times the
+// surface pixels; background pixels take no samples. Modes:
+//   uniform          spp samples at every surface pixel, no filter
+//   uniform_atrous   the same samples, A-Trous filtered
+//   adaptive_atrous  the budget apportioned by geometric importance
+//                    (core/sample_budget.hpp: W_p over a `window`, at least
+//                    `min_samples` per pixel), A-Trous filtered
+// All three trace exactly the same number of indirect samples. Samples are
+// generated in batches of `batch` samples through sample-to-pixel buffers
+// (0: one batch per pixel count, as the paper); the image does not depend on
+// the batch size or the thread count. A pixel left without samples (only
+// when the budget is below the pixel count) is filled by the filter.
+//
+// Passes (timed): BC.gbuffer, IM.importance, SC.counts, SO.scan,
+// IS.indirect (batch buffers, samples, stores), AT.atrous, C.compose.
+// AOVs: indirect.RGB (the filtered incident indirect irradiance, the
+// quantity the filter and the comparison work on), indirect_raw.RGB (before
+// the filter), direct.RGB, albedo.RGB, N.XYZ, P.XYZ, Z, importance,
+// sampleCount. The beauty is direct + kd / pi * indirect (the glossy part of
+// indirect light is left out) + emission seen directly.
+// Counters: samples.indirect, rays.camera, rays.indirect, rays.shadow,
+// budget.active_pixels, budget.minimum (applied), budget.invalid_importance.
+#include <tbb/parallel_for.h>
+
+#include "core/brdf.hpp"
+#include "core/delta_lights.hpp"
+#include "core/mesh_accel.hpp"
+#include "core/sample_budget.hpp"
+#include "plugins/filter_atrous/atrous_params.hpp"
+#include "plugins/lighting_adaptive_indirect/indirect_estimator.hpp"
+#include "plugins/technique.hpp"
+
+namespace weft {
+
+namespace {
+
+enum class Mode { Uniform, UniformAtrous, AdaptiveAtrous };
+
+struct Params {
+    Mode mode;
+    int minSamples, window, bounces, rrDepth, directSamples;
+    std::int64_t batch;
+    AtrousSettings atrous;
+};
+
+Params readParams(const ParamSet& p) {
+    Params v;
+    const std::string& m = p.getString("mode");
+    v.mode = m == "uniform" ? Mode::Uniform : m == "uniform_atrous" ? Mode::UniformAtrous : Mode::AdaptiveAtrous;
+    v.minSamples = int(p.getInt("min_samples")), v.window = int(p.getInt("window"));
+    v.bounces = int(p.getInt("bounces")), v.rrDepth = int(p.getInt("rr_depth"));
+    v.directSamples = int(p.getInt("direct_samples")), v.batch = p.getInt("batch");
+    v.atrous = atrousSettingsFrom(p);
+    return v;
+}
+
+GeometryGuides guidesOf(const GBuffer& g) {
+    GeometryGuides out{g.width, g.height, {}, {}};
+    out.normal.resize(g.texels.size()), out.position.resize(g.texels.size());
+    for (std::size_t i = 0; i < g.texels.size(); ++i) {
+        const GTexel& t = g.texels[i];
+        out.normal.set(i, t.normal.x(), t.normal.y(), t.normal.z());
+        out.position.set(i, t.position.x(), t.position.y(), t.position.z());
+    }
+    return out;
+}
+
+// The incident indirect irradiance of every pixel: the mean of its samples,
+// NaN (a missing sample for the filter) where it has none.
+std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est, const std::vector<std::uint32_t>& counts,
+                                  std::int64_t batchSize, std::uint64_t seed, Counters& counters) {
+    const std::vector<std::int64_t> offsets = exclusiveScan(counts);
+    const SampleBatches batches(offsets, batchSize > 0 ? batchSize : std::int64_t(counts.size()));
+    std::vector<float> sums(3 * counts.size(), 0.0f);
+    std::vector<std::uint32_t> samplePixel;
+    std::vector<Vec3f> results;
+    for (std::int64_t b = 0; b < batches.count(); ++b) {
+        batches.fill(b, samplePixel);
+        results.resize(samplePixel.size());
+        const std::int64_t b0 = batches.begin(b);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samplePixel.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+            enableFastFloatMode();
+            PathRayCounts rays;
+            for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                const std::uint32_t pixel = samplePixel[k];
+                const int x = int(pixel % std::uint32_t(g.width)), y = int(pixel / std::uint32_t(g.width));
+                const PixelSampler sampler(seed, x, y, batches.indexInPixel(b0 + std::int64_t(k), pixel), counts[pixel]);
+                results[k] = est.irradiance(g.texels[pixel], sampler, rays);
+            }
+            counters.add("rays.indirect", rays.bounce), counters.add("rays.shadow", rays.shadow);
+        });
+        // Store: each pixel adds its samples in order, so batches change nothing.
+        batches.forEachPixelRun(b, [&](std::uint32_t pixel, std::int64_t s0, std::int64_t s1) {
+            enableFastFloatMode();
+            for (std::int64_t s = s0; s < s1; ++s)
+                for (int c = 0; c < 3; ++c) sums[3 * pixel + c] += results[std::size_t(s - b0)][c];
+        });
+    }
+    tbb::parallel_for(std::size_t(0), counts.size(), [&](std::size_t i) {
+        enableFastFloatMode();
+        for (int c = 0; c < 3; ++c) sums[3 * i + c] = counts[i] ? sums[3 * i + c] / float(counts[i]) : std::nanf("");
+    });
+    counters.add("samples.indirect", offsets.back());
+    return sums;
+}
+
+class AdaptiveIndirect final : public Technique {
+public:
+    AdaptiveIndirect(const Scene& scene, const ParamSet& p) : p_(readParams(p)) { requireMeshLights(scene, "lighting.adaptive_indirect"); }
+
+    Image render(const Scene& scene, RenderContext& ctx) override {
+        const RenderSettings& s = ctx.settings;
+        { ScopedTimer t(ctx.timings, "build_bvh"); scene.accel(); scene.emitters(); }
+        GBuffer g;
+        { ScopedTimer t(ctx.timings, "BC.gbuffer"); g = createGBuffer(scene, s, ctx.counters); }
+        const GeometryGuides guides = guidesOf(g);
+        std::vector<std::uint8_t> active(g.texels.size());
+        for (std::size_t i = 0; i < active.size(); ++i) active[i] = g.texels[i].background() ? 0 : 1;
+        std::vector<float> importance(g.texels.size(), 0.0f);
+        const std::vector<std::uint32_t> counts = sampleCounts(guides, active, importance, s, ctx);
+        const IndirectEstimator est(scene, p_.bounces, p_.rrDepth);
+        std::vector<float> raw;
+        { ScopedTimer t(ctx.timings, "IS.indirect"); raw = sampleIndirect(g, est, counts, p_.batch, s.seed, ctx.counters); }
+        std::vector<float> filtered = raw;
+        if (p_.mode != Mode::Uniform) {
+            ScopedTimer t(ctx.timings, "AT.atrous");
+            atrousFilter(filtered, g.width, g.height, guides, p_.atrous);
+        }
+        ScopedTimer t(ctx.timings, "C.compose");
+        return compose(scene, g, est, raw, filtered, importance, counts, s.seed, ctx.counters);
+    }
+
+private:
+    std::vector<std::uint32_t> sampleCounts(const GeometryGuides& guides, const std::vector<std::uint8_t>& active,
+                                            std::vector<float>& importance, const RenderSettings& s, RenderContext& ctx) const {
+        std::int64_t activePixels = 0;
+        for (std::uint8_t a : active) activePixels += a;
+        ctx.counters.add("budget.active_pixels", activePixels);
+        if (p_.mode != Mode::AdaptiveAtrous) {
+            std::vector<std::uint32_t> counts(active.size());
+            for (std::size_t i = 0; i < active.size(); ++i) counts[i] = active[i] ? std::uint32_t(s.spp) : 0;
+            return counts;
+        }
+        {
+            ScopedTimer t(ctx.timings, "IM.importance");
+            importance = geometryImportance(guides, {p_.window, p_.atrous.sigmaNormal, p_.atrous.sigmaPosition});
+        }
+        ScopedTimer t(ctx.timings, "SC.counts");
+        SampleCounts c = apportionSamples(importance, active, {std::int64_t(s.spp) * activePixels, p_.minSamples, s.seed});
+        ctx.counters.add("budget.minimum", c.minimum);
+        ctx.counters.add("budget.invalid_importance", c.invalidImportance + c.infiniteImportance);
+        return std::move(c.counts);
+    }
+
+    Image compose(const Scene& scene, const GBuffer& g, const IndirectEstimator& est, const std::vector<float>& raw,
+                  const std::vector<float>& filtered, const std::vector<float>& importance,
+                  const std::vector<std::uint32_t>& counts, std::uint64_t seed, Counters& counters) const {
+        Image img(g.width, g.height, {"R", "G", "B", "A", "indirect.R", "indirect.G", "indirect.B", "indirect_raw.R",
+                                      "indirect_raw.G", "indirect_raw.B", "direct.R", "direct.G", "direct.B", "albedo.R",
+                                      "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "Z", "importance",
+                                      "sampleCount"});
+        tbb::parallel_for(0, g.height, [&](int y) {
+            enableFastFloatMode();
+            PathRayCounts rays;
+            for (int x = 0; x < g.width; ++x) {
+                const std::size_t i = std::size_t(y) * g.width + x;
+                const GTexel& t = g.texels[i];
+                float* px = img.pixel(x, y);
+                px[23] = importance[i], px[24] = float(counts[i]);
+                if (t.background()) continue;
+                const Vec3f wo = (Vec3f(float(scene.camera.eye.x()), float(scene.camera.eye.y()), float(scene.camera.eye.z())) - t.position).unitSafe();
+                Vec3f direct(0, 0, 0);
+                for (int k = 0; k < p_.directSamples; ++k) {
+                    const PixelSampler sampler(seed ^ 0xd1b54a32d192ed03ull, x, y, std::uint32_t(k), std::uint32_t(p_.directSamples));
+                    direct += est.direct(t.position, t.normal, wo, std::uint32_t(t.material), sampler, 0, rays);
+                }
+                direct /= float(std::max(1, p_.directSamples));
+                const Material& mat = scene.materials[std::size_t(t.material)];
+                if (t.front && mat.emissive()) direct += mat.emission;
+                Vec3f e(filtered[3 * i], filtered[3 * i + 1], filtered[3 * i + 2]);
+                if (!std::isfinite(e.x() + e.y() + e.z())) e = Vec3f(0, 0, 0);  // unsampled and unfiltered
+                const Vec3f eRaw = counts[i] ? Vec3f(raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]) : Vec3f(0, 0, 0);
+                const Vec3f rgb = direct + Brdf::of(mat).kd * e * float(1 / M_PI);
+                const float values[23] = {rgb.x(), rgb.y(), rgb.z(), 1.0f, e.x(), e.y(), e.z(), eRaw.x(), eRaw.y(), eRaw.z(),
+                                          direct.x(), direct.y(), direct.z(), t.albedo.x(), t.albedo.y(), t.albedo.z(),
+                                          t.normal.x(), t.normal.y(), t.normal.z(), t.position.x(), t.position.y(),
+                                          t.position.z(), t.depth};
+                std::copy(values, values + 23, px);
+            }
+            counters.add("rays.shadow", rays.shadow);
+        });
+        return img;
+    }
+
+    Params p_;
+};
+
+ParamTable table() {
+    std::vector<ParamSpec> specs = {
+        enumParam("mode", "adaptive_atrous", {"uniform", "uniform_atrous", "adaptive_atrous"},
+                  "indirect samples: spp at every pixel (unfiltered or A-Trous filtered), or the same budget apportioned by geometric importance and filtered"),
+        intParam("min_samples", 2, 0, 1 << 20, "adaptive: indirect samples every surface pixel gets at least (the paper: 1 or 2)"),
+        intParam("window", 4, 2, 10, "adaptive: k x k window of the importance map (W_p of the normal/position weights)"),
+        intParam("bounces", 2, 1, 64, "indirect bounces (1: light reflected once on its way to the pixel)"),
+        intParam("rr_depth", 3, 1, 1024, "path vertices (the pixel's surface is 1) before Russian roulette may end a path"),
+        intParam("direct_samples", 4, 0, 4096, "emitter samples per pixel for the direct light of the beauty image"),
+        intParam("batch", 0, 0, std::int64_t(1) << 32, "samples per batch (sample-to-pixel buffer size); 0: the pixel count"),
+    };
+    for (ParamSpec& spec : atrousParamSpecs()) specs.push_back(std::move(spec));
+    return ParamTable("lighting.adaptive_indirect", std::move(specs));
+}
+
+const TechniqueRegistrar registrar{{
+    "lighting.adaptive_indirect",
+    "indirect light sampled with a fixed budget apportioned by geometric importance, A-Trous filtered (Bauszat et al. 2011)",
+    table(),
+    [](const Scene& scene, const ParamSet& p) { return std::make_unique<AdaptiveIndirect>(scene, p); },
+}};
+
+}  // namespace
+
+}  // namespace weft

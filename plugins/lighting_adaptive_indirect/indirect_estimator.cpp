@@ -1,0 +1,80 @@
+#include "plugins/lighting_adaptive_indirect/indirect_estimator.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "core/brdf.hpp"
+#include "core/delta_lights.hpp"
+#include "core/mesh_accel.hpp"
+
+namespace weft {
+
+namespace {
+constexpr std::uint32_t kDimsPerVertex = 8;  // 3 light, 3 BRDF, 1 roulette, 1 spare
+}
+
+IndirectEstimator::IndirectEstimator(const Scene& scene, int bounces, int rrDepth)
+    : scene_(scene), bounces_(bounces), rrDepth_(rrDepth), eps_(rayEpsilon(scene)) {
+    scene.accel(), scene.emitters();  // built before any parallel use
+}
+
+Vec3f IndirectEstimator::direct(const Vec3f& p, const Vec3f& n, const Vec3f& wo, std::uint32_t material,
+                                const PixelSampler& sampler, std::uint32_t dim, PathRayCounts& counts) const {
+    const MeshAccel& accel = scene_.accel();
+    const Brdf brdf = Brdf::of(scene_.materials[material]);
+    const Vec3f origin = p + n * eps_;
+    Vec3f sum(0, 0, 0);
+    const Emitters& emitters = scene_.emitters();
+    if (!emitters.empty()) {
+        const EmitterSample e = emitters.sample(sampler.get(dim), sampler.get(dim + 1), sampler.get(dim + 2));
+        Vec3f to = e.position - origin;
+        const float d2 = to.lengthSqr(), d = std::sqrt(d2);
+        to /= d;
+        const float cosX = n.dot(to), cosL = -e.normal.dot(to);
+        if (cosX > 0 && cosL > 0 && d > 2 * eps_) {
+            ++counts.shadow;
+            if (!accel.occluded(origin, to, 0.0f, d * (1.0f - 1e-4f)))
+                sum += brdf.eval(wo, to, n) * e.radiance * (cosX * cosL / (d2 * e.pdfArea));
+        }
+    }
+    for (const Light& light : scene_.lights) {
+        const DeltaIllumination li = illuminate(light, origin);
+        const float cosX = n.dot(li.wi);
+        if (cosX <= 0) continue;
+        ++counts.shadow;
+        if (!accel.occluded(origin, li.wi, 0.0f, li.distance * (1.0f - 1e-4f))) sum += brdf.eval(wo, li.wi, n) * li.irradiance * cosX;
+    }
+    return sum;
+}
+
+Vec3f IndirectEstimator::irradiance(const GTexel& t, const PixelSampler& sampler, PathRayCounts& counts) const {
+    if (t.background()) return Vec3f(0, 0, 0);
+    const MeshAccel& accel = scene_.accel();
+    Vec3f o = t.position + t.normal * eps_, d = sampleCosine(t.normal, sampler.get(0), sampler.get(1));
+    Vec3f L(0, 0, 0), throughput(float(M_PI), float(M_PI), float(M_PI));  // pi: cosine / pdf
+    for (int bounce = 1; bounce <= bounces_; ++bounce) {
+        ++counts.bounce;
+        const SurfaceHit hit = accel.intersect(o, d, 0.0f, std::numeric_limits<float>::infinity());
+        if (!hit.valid()) break;
+        const Vec3f p = o + d * hit.t, wo = -d;
+        const Vec3f n = hit.normal.dot(wo) > 0 ? hit.normal : -hit.normal;
+        const std::uint32_t material = accel.material(hit.geom, hit.prim);
+        const std::uint32_t dim = 2 + kDimsPerVertex * std::uint32_t(bounce - 1);
+        L += throughput * direct(p, n, wo, material, sampler, dim, counts);
+        if (bounce == bounces_) break;
+        if (bounce + 1 >= rrDepth_) {  // the texel is vertex 1, this hit vertex bounce + 1
+            const float q = std::min(0.95f, std::max({throughput.x(), throughput.y(), throughput.z()}) / float(M_PI));
+            if (sampler.get(dim + 6) >= q) break;
+            throughput /= q;
+        }
+        const Brdf brdf = Brdf::of(scene_.materials[material]);
+        const Vec3f wi = brdf.sample(wo, n, sampler.get(dim + 3), sampler.get(dim + 4), sampler.get(dim + 5));
+        const float cosI = n.dot(wi), pdf = brdf.pdf(wo, wi, n);
+        if (cosI <= 0 || !(pdf > 0)) break;
+        throughput *= brdf.eval(wo, wi, n) * (cosI / pdf);
+        o = p + n * eps_, d = wi;
+    }
+    return L;
+}
+
+}  // namespace weft
