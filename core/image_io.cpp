@@ -1,7 +1,5 @@
 #include "core/image_io.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +7,7 @@
 #include "core/atomic_file.hpp"
 #include "core/color.hpp"
 #include "core/error.hpp"
+#include "core/image_codec.hpp"
 
 namespace weft {
 
@@ -20,12 +19,10 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-void writeWithOiio(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+void writeAtomically(const std::string& path, const ImageFileSpec& spec, const void* pixels) {
     AtomicOutput out(path);
-    auto writer = OIIO::ImageOutput::create(out.tempPath());
-    if (!writer) throw Error("cannot write '" + path + "': no image writer for this extension");
-    if (!writer->open(out.tempPath(), spec) || !writer->write_image(spec.format, pixels) || !writer->close())
-        throw Error("cannot write '" + path + "': " + writer->geterror());
+    const std::string error = imageCodec().write(out.tempPath(), spec, pixels);
+    if (!error.empty()) throw Error("cannot write '" + path + "': " + error);
     out.commit();
 }
 
@@ -42,33 +39,27 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
 
 void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window) {
     if (lowerExtension(path) != ".exr") throw Error("output '" + path + "': the render output must be an .exr file");
-    OIIO::ImageSpec spec(image.width(), image.height(), image.channelCount(), OIIO::TypeDesc::FLOAT);
+    ImageFileSpec spec;
+    spec.width = image.width(), spec.height = image.height();
+    spec.channels = image.channelNames();
     spec.x = window.x, spec.y = window.y;
-    spec.full_x = 0, spec.full_y = 0;
-    spec.full_width = window.fullWidth, spec.full_height = window.fullHeight;
-    spec.channelnames = image.channelNames();
-    spec.alpha_channel = image.channelIndex("A");
-    spec.z_channel = image.channelIndex("Z");
-    spec.attribute("compression", "zip");
-    spec.attribute("oiio:ColorSpace", "scene_linear");
-    spec.attribute("DateTime", "");  // OIIO would stamp the wall clock: same render, same bytes
-    for (const auto& [key, value] : metadata) spec.attribute(key, value);
-    writeWithOiio(path, spec, image.data().data());
+    spec.fullWidth = window.fullWidth, spec.fullHeight = window.fullHeight;
+    spec.attributes = {{"compression", "zip"}, {"oiio:ColorSpace", "scene_linear"},
+                       {"DateTime", ""}};  // OIIO would stamp the wall clock: same render, same bytes
+    spec.attributes.insert(spec.attributes.end(), metadata.begin(), metadata.end());
+    writeAtomically(path, spec, image.data().data());
 }
 
 Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window) {
     if (!std::filesystem::exists(path)) throw Error("image '" + path + "': no such file");
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw Error("image '" + path + "': cannot be read (" + OIIO::geterror() + ")");
-    const OIIO::ImageSpec& spec = in->spec();
-    Image image(spec.width, spec.height, spec.channelnames);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.data().data()))
-        throw Error("image '" + path + "': " + in->geterror());
-    if (window) *window = ImageWindow{spec.x - spec.full_x, spec.y - spec.full_y, spec.full_width, spec.full_height};
-    if (metadata) {
-        for (const auto& attr : spec.extra_attribs)
-            if (attr.type() == OIIO::TypeDesc::STRING) metadata->emplace_back(attr.name().string(), attr.get_string());
-    }
+    ImageFileSpec spec;
+    std::vector<float> pixels;
+    const std::string error = imageCodec().read(path, spec, pixels);
+    if (!error.empty()) throw Error("image '" + path + "': " + error);
+    Image image(spec.width, spec.height, spec.channels);
+    image.data() = std::move(pixels);
+    if (window) *window = ImageWindow{spec.x, spec.y, spec.fullWidth, spec.fullHeight};
+    if (metadata) metadata->insert(metadata->end(), spec.attributes.begin(), spec.attributes.end());
     return image;
 }
 
@@ -88,9 +79,12 @@ void writePreview(const Image& image, const std::string& path) {
         const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
         bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
     }
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    writeWithOiio(path, spec, bytes.data());
+    ImageFileSpec spec;
+    spec.width = w, spec.height = h, spec.fullWidth = w, spec.fullHeight = h;
+    spec.channels = {"R", "G", "B"};
+    spec.uint8 = true;
+    spec.attributes = {{"oiio:ColorSpace", "sRGB"}};
+    writeAtomically(path, spec, bytes.data());
 }
 
 }  // namespace weft

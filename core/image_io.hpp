@@ -1,5 +1,5 @@
 #pragma once
-// Image files through OpenImageIO: multi-channel EXR with render metadata,
+// Image files (OpenImageIO, through core/image_codec.hpp): multi-channel EXR with render metadata,
 // and display-referred previews (PNG/JPEG/TIFF) through OpenColorIO.
 #include <string>
 #include <utility>
