@@ -7,6 +7,7 @@
 #include "core/atomic_file.hpp"
 #include "core/color.hpp"
 #include "core/error.hpp"
+#include "core/exr_writer.hpp"
 #include "core/image_codec.hpp"
 
 namespace weft {
@@ -39,15 +40,11 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
 
 void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window) {
     if (lowerExtension(path) != ".exr") throw Error("output '" + path + "': the render output must be an .exr file");
-    ImageFileSpec spec;
-    spec.width = image.width(), spec.height = image.height();
-    spec.channels = image.channelNames();
-    spec.x = window.x, spec.y = window.y;
-    spec.fullWidth = window.fullWidth, spec.fullHeight = window.fullHeight;
-    spec.attributes = {{"compression", "zip"}, {"oiio:ColorSpace", "scene_linear"},
-                       {"DateTime", ""}};  // OIIO would stamp the wall clock: same render, same bytes
-    spec.attributes.insert(spec.attributes.end(), metadata.begin(), metadata.end());
-    writeAtomically(path, spec, image.data().data());
+    Metadata attributes{{"oiio:ColorSpace", "scene_linear"}};
+    attributes.insert(attributes.end(), metadata.begin(), metadata.end());
+    AtomicOutput out(path);
+    writeExrFile(out.tempPath(), image, attributes, window.x, window.y, window.fullWidth, window.fullHeight);
+    out.commit();
 }
 
 Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window) {
