@@ -34,6 +34,8 @@ import sys
 import numpy as np
 import OpenImageIO as oiio
 
+from benchlib import write_mesh_scenes as write_scenes
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WEFT = os.path.join(ROOT, "build", "bin", "weft")
 OVERHEAD = os.path.join(ROOT, "build", "bin", "weft_budget_overhead")
@@ -45,24 +47,6 @@ def run(args):
     if proc.returncode != 0:
         sys.exit("bench: command failed: %s\n%s" % (" ".join(args), proc.stderr.strip()))
     return proc.stdout
-
-
-def write_scenes(data, out):
-    cornell = os.path.join(ROOT, "data", "cornell", "CornellBox-Original.obj")
-    camera = {"eye": [0, 1, 3.6], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 40}
-    scenes = {
-        "cornell": {"camera": camera, "meshes": [{"file": cornell}]},
-        "glossy": {"camera": camera, "meshes": [{"file": os.path.join(data, "cornell", "CornellBox-Glossy.obj")}]},
-        "bunny": {"camera": camera, "meshes": [
-            {"file": cornell},
-            {"file": os.path.join(data, "bunny.ply"), "scale": 4, "translate": [0.358, 0.468, 0.37]}]},
-    }
-    paths = {}
-    for name, scene in scenes.items():
-        paths[name] = os.path.join(out, name + ".json")
-        with open(paths[name], "w") as f:
-            json.dump(scene, f, indent=1)
-    return paths
 
 
 def render(scene, path, res, spp, seed, threads, sets):

@@ -1,6 +1,7 @@
 """What the benchmark scripts share: where weft is, running a command (a
 failure ends the benchmark with its output), image RMSE through `weft diff`,
 and the aneurism converted to a VDB once."""
+import json
 import os
 import subprocess
 import sys
@@ -36,3 +37,22 @@ def prepare_aneurism(data, out):
     if not os.path.exists(vdb):
         run([WEFT, "convert", os.path.join(data, "aneurism.raw.gz"), "--dims", "256,256,256", "--type", "u8", "-o", vdb])
     return vdb
+
+
+def write_mesh_scenes(data, out):
+    """Scene files of the Cornell box, the glossy box and the bunny in the box."""
+    cornell = os.path.join(ROOT, "data", "cornell", "CornellBox-Original.obj")
+    camera = {"eye": [0, 1, 3.6], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 40}
+    scenes = {
+        "cornell": {"camera": camera, "meshes": [{"file": cornell}]},
+        "glossy": {"camera": camera, "meshes": [{"file": os.path.join(data, "cornell", "CornellBox-Glossy.obj")}]},
+        "bunny": {"camera": camera, "meshes": [
+            {"file": cornell},
+            {"file": os.path.join(data, "bunny.ply"), "scale": 4, "translate": [0.358, 0.468, 0.37]}]},
+    }
+    paths = {}
+    for name, scene in scenes.items():
+        paths[name] = os.path.join(out, name + ".json")
+        with open(paths[name], "w") as f:
+            json.dump(scene, f, indent=1)
+    return paths

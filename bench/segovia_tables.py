@@ -35,26 +35,8 @@ import statistics
 import subprocess
 import sys
 
-from benchlib import ROOT, WEFT, run
+from benchlib import ROOT, WEFT, run, write_mesh_scenes as write_scenes
 PASSES = ["BC.gbuffer", "BS.split", "SSM.shade", "SNSM.shade", "BG.gather", "DB.discontinuity", "B.blur"]
-
-
-def write_scenes(data, out):
-    cornell = os.path.join(ROOT, "data", "cornell", "CornellBox-Original.obj")
-    camera = {"eye": [0, 1, 3.6], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 40}
-    scenes = {
-        "cornell": {"camera": camera, "meshes": [{"file": cornell}]},
-        "glossy": {"camera": camera, "meshes": [{"file": os.path.join(data, "cornell", "CornellBox-Glossy.obj")}]},
-        "bunny": {"camera": camera, "meshes": [
-            {"file": cornell},
-            {"file": os.path.join(data, "bunny.ply"), "scale": 4, "translate": [0.358, 0.468, 0.37]}]},
-    }
-    paths = {}
-    for name, scene in scenes.items():
-        paths[name] = os.path.join(out, name + ".json")
-        with open(paths[name], "w") as f:
-            json.dump(scene, f, indent=1)
-    return paths
 
 
 def render(scene, name, technique, sets, out, res, threads, seed=0):
