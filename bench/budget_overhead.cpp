@@ -39,17 +39,6 @@ double medianMs(int repeat, const std::function<void()>& fn) {
     return t[t.size() / 2];
 }
 
-GeometryGuides guidesOf(const GBuffer& g) {
-    GeometryGuides out{g.width, g.height, {}, {}};
-    out.normal.resize(g.texels.size()), out.position.resize(g.texels.size());
-    for (std::size_t i = 0; i < g.texels.size(); ++i) {
-        const GTexel& t = g.texels[i];
-        out.normal.set(i, t.normal.x(), t.normal.y(), t.normal.z());
-        out.position.set(i, t.position.x(), t.position.y(), t.position.z());
-    }
-    return out;
-}
-
 void table1(const GeometryGuides& g, const std::vector<std::uint8_t>& active, int repeat) {
     const double paper[] = {8.3, 26.2, 50.7, 84.9, 128.7};
     std::printf("\nTable 1: importance + counts, %dx%d, budget 4 spp, minimum 1 (ms, median of %d)\n", g.width, g.height, repeat);

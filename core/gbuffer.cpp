@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/atrous.hpp"
 #include "core/brdf.hpp"
 #include "core/mesh_accel.hpp"
 
@@ -83,6 +84,17 @@ GBuffer createGBuffer(const Scene& scene, const RenderSettings& s, Counters& cou
         counters.add("rays.camera", std::int64_t(s.width) * std::min(kTile, s.height - ty * kTile));
     });
     return g;
+}
+
+GeometryGuides guidesOf(const GBuffer& g) {
+    GeometryGuides out{g.width, g.height, {}, {}};
+    out.normal.resize(g.texels.size()), out.position.resize(g.texels.size());
+    for (std::size_t i = 0; i < g.texels.size(); ++i) {
+        const GTexel& t = g.texels[i];
+        out.normal.set(i, t.normal.x(), t.normal.y(), t.normal.z());
+        out.position.set(i, t.position.x(), t.position.y(), t.position.z());
+    }
+    return out;
 }
 
 }  // namespace weft

@@ -46,4 +46,9 @@ struct GBuffer {
 // Primary rays through pixel centres; counts rays.camera.
 GBuffer createGBuffer(const Scene& scene, const RenderSettings& settings, Counters& counters);
 
+// The normals and positions of a G-buffer as the planes the A-Trous filter
+// and the sample budget are guided by (core/atrous.hpp).
+struct GeometryGuides;
+GeometryGuides guidesOf(const GBuffer& g);
+
 }  // namespace weft

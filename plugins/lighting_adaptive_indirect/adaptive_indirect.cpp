@@ -59,17 +59,6 @@ Params readParams(const ParamSet& p) {
     return v;
 }
 
-GeometryGuides guidesOf(const GBuffer& g) {
-    GeometryGuides out{g.width, g.height, {}, {}};
-    out.normal.resize(g.texels.size()), out.position.resize(g.texels.size());
-    for (std::size_t i = 0; i < g.texels.size(); ++i) {
-        const GTexel& t = g.texels[i];
-        out.normal.set(i, t.normal.x(), t.normal.y(), t.normal.z());
-        out.position.set(i, t.position.x(), t.position.y(), t.position.z());
-    }
-    return out;
-}
-
 // The incident indirect irradiance of every pixel: the mean of its samples,
 // NaN (a missing sample for the filter) where it has none.
 std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est, const std::vector<std::uint32_t>& counts,

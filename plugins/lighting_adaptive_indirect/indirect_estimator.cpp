@@ -5,6 +5,7 @@
 
 #include "core/brdf.hpp"
 #include "core/delta_lights.hpp"
+#include "core/direct_light.hpp"
 #include "core/mesh_accel.hpp"
 
 namespace weft {
@@ -20,31 +21,8 @@ IndirectEstimator::IndirectEstimator(const Scene& scene, int bounces, int rrDept
 
 Vec3f IndirectEstimator::direct(const Vec3f& p, const Vec3f& n, const Vec3f& wo, std::uint32_t material,
                                 const PixelSampler& sampler, std::uint32_t dim, PathRayCounts& counts) const {
-    const MeshAccel& accel = scene_.accel();
-    const Brdf brdf = Brdf::of(scene_.materials[material]);
-    const Vec3f origin = p + n * eps_;
-    Vec3f sum(0, 0, 0);
-    const Emitters& emitters = scene_.emitters();
-    if (!emitters.empty()) {
-        const EmitterSample e = emitters.sample(sampler.get(dim), sampler.get(dim + 1), sampler.get(dim + 2));
-        Vec3f to = e.position - origin;
-        const float d2 = to.lengthSqr(), d = std::sqrt(d2);
-        to /= d;
-        const float cosX = n.dot(to), cosL = -e.normal.dot(to);
-        if (cosX > 0 && cosL > 0 && d > 2 * eps_) {
-            ++counts.shadow;
-            if (!accel.occluded(origin, to, 0.0f, d * (1.0f - 1e-4f)))
-                sum += brdf.eval(wo, to, n) * e.radiance * (cosX * cosL / (d2 * e.pdfArea));
-        }
-    }
-    for (const Light& light : scene_.lights) {
-        const DeltaIllumination li = illuminate(light, origin);
-        const float cosX = n.dot(li.wi);
-        if (cosX <= 0) continue;
-        ++counts.shadow;
-        if (!accel.occluded(origin, li.wi, 0.0f, li.distance * (1.0f - 1e-4f))) sum += brdf.eval(wo, li.wi, n) * li.irradiance * cosX;
-    }
-    return sum;
+    return directLight(scene_, scene_.accel(), p, n, wo, Brdf::of(scene_.materials[material]), sampler, dim, eps_,
+                       counts.shadow);
 }
 
 Vec3f IndirectEstimator::irradiance(const GTexel& t, const PixelSampler& sampler, PathRayCounts& counts) const {

@@ -25,6 +25,7 @@
 
 #include "core/brdf.hpp"
 #include "core/delta_lights.hpp"
+#include "core/direct_light.hpp"
 #include "core/emitters.hpp"
 #include "core/mesh_accel.hpp"
 #include "core/pixel_loop.hpp"
@@ -80,35 +81,6 @@ public:
 private:
     static constexpr std::uint32_t kDimsPerVertex = 8;
 
-    // Light arriving at p (normal n, towards wo) straight from lights, times the BRDF.
-    Vec3f directLight(const Scene& scene, const MeshAccel& accel, const Vec3f& p, const Vec3f& n, const Vec3f& wo,
-                      const Brdf& brdf, const PixelSampler& sampler, std::uint32_t dim, PathCounts& counts) const {
-        Vec3f sum(0, 0, 0);
-        const Vec3f origin = p + n * eps_;
-        const Emitters& emitters = scene.emitters();
-        if (!emitters.empty()) {
-            const EmitterSample e = emitters.sample(sampler.get(dim), sampler.get(dim + 1), sampler.get(dim + 2));
-            Vec3f to = e.position - origin;
-            const float d2 = to.lengthSqr(), d = std::sqrt(d2);
-            to /= d;
-            const float cosX = n.dot(to), cosL = -e.normal.dot(to);
-            if (cosX > 0 && cosL > 0 && d > 2 * eps_) {
-                ++counts.shadow;
-                if (!accel.occluded(origin, to, 0.0f, d * (1.0f - 1e-4f)))
-                    sum += brdf.eval(wo, to, n) * e.radiance * (cosX * cosL / (d2 * e.pdfArea));
-            }
-        }
-        for (const Light& light : scene.lights) {
-            const DeltaIllumination li = illuminate(light, origin);
-            const float cosX = n.dot(li.wi);
-            if (cosX <= 0) continue;
-            ++counts.shadow;
-            if (!accel.occluded(origin, li.wi, 0.0f, li.distance * (1.0f - 1e-4f)))
-                sum += brdf.eval(wo, li.wi, n) * li.irradiance * cosX;
-        }
-        return sum;
-    }
-
     Vec3f radiance(const Scene& scene, const MeshAccel& accel, Vec3f o, Vec3f d, const PixelSampler& sampler,
                    PathCounts& counts) const {
         Vec3f L(0, 0, 0), throughput(1, 1, 1);
@@ -122,7 +94,7 @@ private:
             const Vec3f n = front ? hit.normal : -hit.normal;
             const Brdf brdf = Brdf::of(mat, model_);
             const std::uint32_t dim = 2 + kDimsPerVertex * std::uint32_t(depth - 1);
-            L += throughput * directLight(scene, accel, p, n, wo, brdf, sampler, dim, counts);
+            L += throughput * directLight(scene, accel, p, n, wo, brdf, sampler, dim, eps_, counts.shadow);
             if (depth == maxDepth_) break;
             if (depth >= rrDepth_) {
                 const float q = std::min(0.95f, std::max({throughput.x(), throughput.y(), throughput.z()}));
