@@ -53,6 +53,14 @@ double henyeyGreenstein(double g, double cosTheta) {  // normalised so that isot
 
 // Per-thread state of one row: samplers, intersectors, counts.
 struct RowState {
+    RowState(const Volume& vol, const std::vector<openvdb::FloatGrid::Ptr>& caches, const VdbIntersector& intersector)
+        : acc(vol.grid->getConstAccessor()), sampler(acc, vol.grid->transform()), primary(intersector), shadow(intersector) {
+        cacheAcc.reserve(caches.size());
+        for (const auto& c : caches) cacheAcc.push_back(c->getConstAccessor());
+        for (std::size_t i = 0; i < caches.size(); ++i) cacheSampler.emplace_back(cacheAcc[i], caches[i]->transform());
+    }
+    RowState(const RowState&) = delete;  // the samplers point at this row's own accessors
+
     openvdb::FloatGrid::ConstAccessor acc;
     Sampler sampler;
     std::vector<openvdb::FloatGrid::ConstAccessor> cacheAcc;
@@ -80,10 +88,7 @@ public:
         const VdbIntersector intersector(*vol.grid);
         Image image = Image::rgba(s.width, s.height);
         forEachRow(s, "volume.singlescatter", [&](int y) {
-            RowState row{vol.grid->getConstAccessor(), Sampler(row.acc, vol.grid->transform()), {}, {}, intersector, intersector};
-            row.sampler = Sampler(row.acc, vol.grid->transform());
-            for (const auto& c : caches_) row.cacheAcc.push_back(c->getConstAccessor());
-            for (std::size_t i = 0; i < caches_.size(); ++i) row.cacheSampler.emplace_back(row.cacheAcc[i], caches_[i]->transform());
+            RowState row(vol, caches_, intersector);
             for (int x = 0; x < s.width; ++x) {
                 Vec3d sum(0.0);
                 double alpha = 0;
