@@ -16,6 +16,26 @@ Ray Camera::generate(double px, double py, int width, int height) const {
     return {eye, (forward + right * sx + trueUp * sy).unitSafe()};
 }
 
+Camera lerpCamera(const Camera& a, const Camera& b, double t) {
+    Camera c;
+    c.eye = a.eye + (b.eye - a.eye) * t;
+    c.target = a.target + (b.target - a.target) * t;
+    c.up = a.up + (b.up - a.up) * t;
+    c.fovY = a.fovY + (b.fovY - a.fovY) * t;
+    return c;
+}
+
+Camera CameraPath::at(double frame) const {
+    if (keys.empty()) return Camera{};
+    if (!(frame > keys.front().first)) return keys.front().second;  // NaN holds the first key too
+    for (std::size_t i = 1; i < keys.size(); ++i)
+        if (frame <= keys[i].first) {
+            const double t = (frame - keys[i - 1].first) / (keys[i].first - keys[i - 1].first);
+            return lerpCamera(keys[i - 1].second, keys[i].second, t);
+        }
+    return keys.back().second;
+}
+
 Camera Camera::framing(const BBoxd& box, double fovY, double aspect) {
     const Vec3d center = box.getCenter();
     const Vec3d extent = box.extents() * 0.5;

@@ -4,6 +4,9 @@
 #include <openvdb/math/BBox.h>
 #include <openvdb/math/Vec3.h>
 
+#include <utility>
+#include <vector>
+
 namespace weft {
 
 using Vec3d = openvdb::math::Vec3d;
@@ -26,6 +29,28 @@ struct Camera {
     // Looks down -z at the box centre from far enough that the whole box fits
     // the frame, with a small margin (how a bare .vdb or mesh is framed).
     static Camera framing(const BBoxd& box, double fovY, double aspect);
+};
+
+// eye, target, up and field of view interpolated linearly (t in [0, 1]).
+Camera lerpCamera(const Camera& a, const Camera& b, double t);
+
+// A camera keyed by frame: linear between the keys around a (fractional)
+// frame, held before the first key and after the last.
+struct CameraPath {
+    std::vector<std::pair<double, Camera>> keys;  // frames strictly increasing
+
+    bool empty() const { return keys.empty(); }
+    Camera at(double frame) const;
+};
+
+// When the shutter is open, in frames relative to the frame rendered:
+// [-0.25, 0.25] is a 180-degree shutter centred on the frame, [0, 0] an
+// instant (no motion blur). A camera sample's time u in [0, 1) is the frame
+// time frame + open + u * (close - open).
+struct Shutter {
+    double open = 0, close = 0;
+    bool instant() const { return open == close; }
+    double frameTime(double frame, double u) const { return frame + open + u * (close - open); }
 };
 
 }  // namespace weft

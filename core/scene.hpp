@@ -38,7 +38,10 @@ struct MeshCache;
 
 struct Scene {
     std::string source;  // what was loaded: a path or builtin:NAME
-    Camera camera;
+    Camera camera;           // at the frame rendered
+    CameraPath cameraPath;   // keyed cameras; empty when the camera is fixed
+    Shutter shutter;         // instant unless the scene opens it
+    double frame = 0;        // the frame rendered (the first key's without --frames)
     std::vector<Volume> volumes;
     std::vector<TriangleMesh> meshes;  // material ids index `materials`
     std::vector<Material> materials;
@@ -46,6 +49,10 @@ struct Scene {
     SceneRenderSettings render;
 
     BBoxd worldBox() const;
+    // The camera at shutter time u in [0, 1): `camera` unless it moves.
+    Camera cameraAt(double u) const;
+    // Whether the camera moves while the shutter is open (motion blur).
+    bool cameraMoves() const;
     // Adds a mesh, moving its materials into the scene's table.
     void addMesh(TriangleMesh mesh);
     // The Embree BVH over every mesh and the emissive triangles, built on the
@@ -65,7 +72,9 @@ private:
 // gridName picks the grid of a bare .vdb (default: "density", else the first float grid).
 // frame, when given, selects what varies with the frame in a scene file:
 // frame-numbered volume files ("smoke.#.vdb", see core/frames.hpp) and a
-// camera keyed by frame ("camera": {"keys": [{"frame": 1, "eye": ...}, ...]}).
+// camera keyed by frame ("camera": {"keys": [{"frame": 1, "eye": ...}, ...]}),
+// which, with an open shutter ("camera": {"shutter": [-0.25, 0.25]}), moves
+// within the frame: motion blur whose time samples follow the frame.
 Scene loadScene(const std::string& input, std::optional<double> aspect = std::nullopt, const std::string& gridName = "",
                 std::optional<int> frame = std::nullopt);
 

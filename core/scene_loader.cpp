@@ -90,38 +90,41 @@ Camera readCamera(const ObjectReader& r, const Camera& defaults = Camera{}) {
     return cam;
 }
 
-Camera lerpCamera(const Camera& a, const Camera& b, double t) {
-    Camera c;
-    c.eye = a.eye + (b.eye - a.eye) * t;
-    c.target = a.target + (b.target - a.target) * t;
-    c.up = a.up + (b.up - a.up) * t;
-    c.fovY = a.fovY + (b.fovY - a.fovY) * t;
-    return c;
-}
-
 // "camera": {"up": ..., "fov": ..., "keys": [{"frame": F, "eye": ..., "target": ...}, ...]}:
-// eye, target, up and fov interpolated linearly between the keys around the
-// frame, held before the first and after the last. No frame: the first key.
-Camera readKeyedCamera(const ObjectReader& r, std::optional<int> frame) {
+// a CameraPath; values a key leaves out come from the camera object.
+CameraPath readCameraPath(const ObjectReader& r) {
     const Camera base = readCamera(r);
     const json& keys = r.value()["keys"];
     if (!keys.is_array() || keys.empty()) r.fail("keys", "camera.keys must be a non-empty array of keys");
-    std::vector<std::pair<double, Camera>> cams;
+    CameraPath path;
     for (std::size_t i = 0; i < keys.size(); ++i) {
         ObjectReader k(r.doc(), r.child("keys/" + std::to_string(i)), "camera key", {"frame", "eye", "target", "up", "fov"});
         if (!k.has("frame")) k.failAt(k.pointer(), "a camera key needs a 'frame'");
         const double f = k.number("frame", 0, -1e9, 1e9);
-        if (!cams.empty() && f <= cams.back().first) k.fail("frame", "camera key frames must increase");
-        cams.emplace_back(f, readCamera(k, base));
+        if (!path.keys.empty() && f <= path.keys.back().first) k.fail("frame", "camera key frames must increase");
+        path.keys.emplace_back(f, readCamera(k, base));
     }
-    const double at = frame ? double(*frame) : cams.front().first;
-    if (at <= cams.front().first) return cams.front().second;
-    for (std::size_t i = 1; i < cams.size(); ++i)
-        if (at <= cams[i].first) {
-            const double t = (at - cams[i - 1].first) / (cams[i].first - cams[i - 1].first);
-            return lerpCamera(cams[i - 1].second, cams[i].second, t);
-        }
-    return cams.back().second;
+    return path;
+}
+
+// "shutter": [open, close] in frames relative to the frame, open <= close.
+Shutter readShutter(const ObjectReader& r) {
+    const json& v = r.value()["shutter"];
+    const auto finite = [](const json& x) { return x.is_number() && std::abs(x.get<double>()) <= 100.0; };
+    if (!v.is_array() || v.size() != 2 || !finite(v[0]) || !finite(v[1]) || v[0].get<double>() > v[1].get<double>())
+        r.fail("shutter", "camera.shutter must be [open, close] in frames relative to the frame, open <= close, within +-100");
+    return {v[0].get<double>(), v[1].get<double>()};
+}
+
+void readSceneCamera(const ObjectReader& cam, std::optional<int> frame, Scene& scene) {
+    if (cam.has("shutter")) scene.shutter = readShutter(cam);
+    if (!cam.has("keys")) {
+        scene.camera = readCamera(cam);
+        return;
+    }
+    scene.cameraPath = readCameraPath(cam);
+    scene.frame = frame ? double(*frame) : scene.cameraPath.keys.front().first;
+    scene.camera = scene.cameraPath.at(scene.frame);
 }
 
 TransferFunction readTransferFunction(const ObjectReader& r, const Volume& vol) {
@@ -270,8 +273,7 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
         });
     if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", {"technique", "resolution", "spp", "seed", "params"}), scene.render);
     if (top.has("camera")) {
-        const ObjectReader cam(doc, "/camera", "camera", {"eye", "target", "up", "fov", "keys"});
-        scene.camera = cam.has("keys") ? readKeyedCamera(cam, frame) : readCamera(cam);
+        readSceneCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov", "keys", "shutter"}), frame, scene);
     }
     else if (!scene.volumes.empty() || !scene.meshes.empty()) {
         const double sceneAspect = scene.render.width ? double(*scene.render.width) / *scene.render.height : 1.0;
@@ -351,6 +353,23 @@ std::string lowerExtension(const std::string& path) {
 
 const char* builtinSceneNames() {
     return "builtin:cloud|builtin:sphere|builtin:zoneplate|builtin:grating|builtin:checker|builtin:siemens|builtin:lines|builtin:disc";
+}
+
+Camera Scene::cameraAt(double u) const {
+    return cameraPath.keys.size() < 2 || shutter.instant() ? camera : cameraPath.at(shutter.frameTime(frame, u));
+}
+
+bool Scene::cameraMoves() const {
+    if (cameraPath.keys.size() < 2 || shutter.instant()) return false;
+    const double open = shutter.frameTime(frame, 0), close = shutter.frameTime(frame, 1);
+    const auto differs = [](const Camera& a, const Camera& b) {
+        return a.eye != b.eye || a.target != b.target || a.up != b.up || a.fovY != b.fovY;
+    };
+    const Camera first = cameraPath.at(open);
+    if (differs(first, cameraPath.at(close))) return true;
+    for (const auto& [f, cam] : cameraPath.keys)  // a path may leave and come back within the shutter
+        if (f > open && f < close && differs(first, cam)) return true;
+    return false;
 }
 
 BBoxd Scene::worldBox() const {

@@ -5,11 +5,13 @@
 
 (A range starting with a minus sign is written --frames=-5--1.)
 
-Array indices are the frame numbers (so they must be >= 0 and below the
-cluster's MaxArraySize, 1001 by default in Slurm; set MaxArraySize=100000 in
-slurm.conf for frames like 1001). Each task runs
-`weft render INPUT ... --frames $SLURM_ARRAY_TASK_ID -o OUTPUT` and logs to
-LOGS/NAME_%A_%a.log (%A: array job id, %a: frame). With --tiles N, each tile
+Array indices are the frame numbers when every frame is a valid index (>= 0
+and below the cluster's MaxArraySize, 1001 by default in Slurm; set
+MaxArraySize=100000 in slurm.conf for frames like 1001); otherwise (negative
+frames, or frames past MaxArraySize) index i is frame FIRST + i, FIRST the
+lowest frame, and the scripts add FIRST back. Each task runs
+`weft render INPUT ... --frames FRAME -o OUTPUT` and logs to
+LOGS/NAME_%A_%a.log (%A: array job id, %a: the array index). With --tiles N, each tile
 is its own array (out/tiles/shot.#.tIofN.exr) and a merge array, one task per
 frame, starts a frame's merge as soon as that frame's tiles are done
 (--dependency=aftercorr on every tile array).
@@ -52,10 +54,15 @@ def render_args_of(args):
     return rest
 
 
-def check_frames(frames, max_array_size):
-    bad = [f for f in frames if f < 0 or f >= max_array_size]
-    if bad:
-        raise PipelineError("frame %d cannot be a Slurm array index (0 <= index < MaxArraySize %d)" % (bad[0], max_array_size))
+def index_base(frames, max_array_size):
+    """The frame array index 0 stands for: 0 when frames are indices themselves, else the lowest frame."""
+    if all(0 <= f < max_array_size for f in frames):
+        return 0
+    base = min(frames)
+    if max(frames) - base >= max_array_size:
+        raise PipelineError("frames %d to %d span more than MaxArraySize %d array indices; submit them in parts"
+                            % (base, max(frames), max_array_size))
+    return base
 
 
 def header(args, name, array, log_dir, dependency=None):
@@ -71,7 +78,8 @@ def header(args, name, array, log_dir, dependency=None):
         lines.append("#SBATCH --time=%s" % args.time)
     if dependency:
         lines.append("#SBATCH --dependency=%s" % dependency)
-    return lines + ["set -euo pipefail", "frame=$SLURM_ARRAY_TASK_ID"]
+    frame = "$((SLURM_ARRAY_TASK_ID + %d))" % args.index_base if args.index_base else "$SLURM_ARRAY_TASK_ID"
+    return lines + ["set -euo pipefail", "frame=" + frame]
 
 
 def render_script(args, weft, render_args, array, tile=None):
@@ -106,14 +114,14 @@ def sbatch(text, script_path):
 def submit(args, frames):
     """Submits (or prints) the arrays for the frames; returns the job ids (or names in a dry run)."""
     render_args = render_args_of(args)
-    check_frames(frames, args.max_array_size)
+    args.index_base = index_base(frames, args.max_array_size)
     if not weftpipe.has_wildcard(args.output):
         raise PipelineError("output '%s' has no frame number (# = 4 digits, @ = 1 digit)" % args.output)
     if args.tiles < 1:
         raise PipelineError("--tiles must be >= 1")
     weft = weftpipe.weft_binary(args.weft) if not args.dry_run else (args.weft or os.environ.get("WEFT") or "weft")
     weft = os.path.abspath(weft) if os.path.sep in weft else weft
-    array = weftpipe.slurm_array_spec(frames)
+    array = weftpipe.slurm_array_spec([f - args.index_base for f in frames])
     tiles = [None] if args.tiles == 1 else [(i, args.tiles) for i in range(1, args.tiles + 1)]
     scripts = [render_script(args, weft, render_args, array, t) for t in tiles]
     if args.dry_run:

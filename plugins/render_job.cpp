@@ -149,6 +149,9 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         given[k] = v;
     }
     const ParamSet params = info.params.parse(given);
+    if (scene.cameraMoves() && !info.motionBlur)
+        throw Error("the camera moves while the shutter is open, and " + name +
+                    " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
     auto technique = info.create(scene, params);
 
     RenderOutcome out;
@@ -165,6 +168,8 @@ RenderOutcome renderToImage(const RenderRequest& r) {
     out.counters = ctx.counters.merged();
     out.metadata = metadataFor(r, name, params, ctx.settings, out.counters);
     if (r.frame) out.metadata.emplace_back("weft:frame", std::to_string(*r.frame));
+    if (!scene.shutter.instant())
+        out.metadata.emplace_back("weft:shutter", formatNumber(scene.shutter.open) + " " + formatNumber(scene.shutter.close));
     if (!r.tile.empty()) addTileMetadata(out.metadata, r.tile, out.window, out.image.width(), out.image.height());
     out.metadata.emplace_back("weft:complete", "1");
     out.timingsMs = ctx.timings.entries();

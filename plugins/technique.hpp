@@ -26,6 +26,9 @@ struct TechniqueInfo {
     std::string summary;
     ParamTable params;
     std::function<std::unique_ptr<Technique>(const Scene&, const ParamSet&)> create;
+    // Whether each camera sample takes its own time in the shutter
+    // (Scene::cameraAt); others cannot render a moving camera.
+    bool motionBlur = false;
 };
 
 using TechniqueRegistry = NamedRegistry<TechniqueInfo>;

@@ -161,7 +161,9 @@ TEST(VplDeferred, AovsAreConsistent) {
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(img.at(x, y, c), img.at(x, y, direct + c) + img.at(x, y, indirect + c), 1e-5f);
             EXPECT_EQ(img.at(x, y, sub), float((y % 2) * 3 + x % 3));
-            if (img.at(x, y, z) == 0.0f) EXPECT_EQ(img.at(x, y, albedo), 0.0f);  // background
+            if (img.at(x, y, z) == 0.0f) {  // background
+                EXPECT_EQ(img.at(x, y, albedo), 0.0f);
+            }
         }
 }
 

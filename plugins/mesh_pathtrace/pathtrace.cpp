@@ -62,7 +62,7 @@ public:
                 for (int i = 0; i < s.spp; ++i) {
                     const PixelSampler sampler(s.seed, x, y, std::uint32_t(i), std::uint32_t(s.spp));
                     const double jx = jitter_ ? sampler.get(0) : 0.5, jy = jitter_ ? sampler.get(1) : 0.5;
-                    const Ray ray = scene.camera.generate(x + jx, y + jy, s.width, s.height);
+                    const Ray ray = scene.cameraAt(sampler.get(kTimeDim)).generate(x + jx, y + jy, s.width, s.height);
                     const Vec3f d(float(ray.dir.x()), float(ray.dir.y()), float(ray.dir.z()));
                     const Vec3f o(float(ray.origin.x()), float(ray.origin.y()), float(ray.origin.z()));
                     sum += radiance(scene, accel, o, d, sampler, counts);
@@ -80,6 +80,7 @@ public:
 
 private:
     static constexpr std::uint32_t kDimsPerVertex = 8;
+    static constexpr std::uint32_t kTimeDim = 1u << 24;  // the shutter time: a dimension no path vertex reaches
 
     Vec3f radiance(const Scene& scene, const MeshAccel& accel, Vec3f o, Vec3f d, const PixelSampler& sampler,
                    PathCounts& counts) const {
@@ -127,6 +128,7 @@ const TechniqueRegistrar registrar{{
                 boolParam("jitter", true, "random positions inside each pixel (antialiasing); false: pixel centres, as a G-buffer sees them"),
                 enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<PathTracer>(scene, p); },
+    /*motionBlur=*/true,
 }};
 
 }  // namespace

@@ -99,7 +99,7 @@ public:
                 if (r.intersector_) hdda.emplace(*r.intersector_);
             }
             Rgba operator()(const CameraSample& c) {
-                const Ray ray = scene.camera.generate(c.x, c.y, s.width, s.height);
+                const Ray ray = scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
                 float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.5f;
                 if (offsets) offset = offsets->sample(c.px, c.py, int(c.index % std::uint32_t(s.spp))).t;
                 const RayAccumulator acc =
@@ -159,6 +159,7 @@ const TechniqueRegistrar registrar{{
     "emission-absorption ray marching at a fixed step (the reference volume renderer)",
     ParamTable("volume.raymarch", raymarchParams()),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<Raymarch>(scene, p); },
+    /*motionBlur=*/true,
 }};
 
 }  // namespace

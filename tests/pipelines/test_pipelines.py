@@ -83,12 +83,33 @@ class SubmitDryRun(unittest.TestCase):
             self.assertEqual(run.returncode, 0, run.stderr)
             self.assertEqual(sorted(os.listdir(d)), ["f.05.exr"])
 
-    def test_frames_that_cannot_be_array_indices_are_refused(self):
-        for frames, extra in [("-2-3", []), ("1001-1002", ["--max-array-size", "1001"])]:
-            r = script("submit_slurm.py", "--frames=" + frames, "-o", "o.#.exr", "--dry-run", *extra, "--", "builtin:cloud")
-            self.assertEqual(r.returncode, 1)
-            self.assertIn("cannot be a Slurm array index", r.stderr)
-            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+    def test_negative_frames_and_frames_past_max_array_size_are_offset_indices(self):
+        for frames, extra, array, index, made in [("-2--1,1", [], "0-1,3", "3", "f.0001.exr"),
+                                                  ("1001-1005x2", ["--max-array-size", "1001"], "0-4:2", "2", "f.1003.exr")]:
+            with tempfile.TemporaryDirectory() as d:
+                r = script("submit_slurm.py", "--frames=" + frames, "-o", "f.#.exr", "--dry-run", "--weft", WEFT, *extra,
+                           "--", "builtin:sphere", "--res", "8x8", cwd=d)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                self.assertIn("#SBATCH --array=%s\n" % array, r.stdout)
+                body = r.stdout.split("\n", 1)[1]
+                run = subprocess.run(["bash", "-c", body], cwd=d, capture_output=True, text=True,
+                                     env=dict(os.environ, SLURM_ARRAY_TASK_ID=index, SLURM_CPUS_PER_TASK="1"))
+                self.assertEqual(run.returncode, 0, run.stderr)
+                self.assertEqual(sorted(os.listdir(d)), [made])
+        with tempfile.TemporaryDirectory() as d:  # the negative frame's name: the sign counts in the width
+            r = script("submit_slurm.py", "--frames=-2", "-o", "f.#.exr", "--dry-run", "--weft", WEFT, "--", "builtin:sphere",
+                       "--res", "8x8", cwd=d)
+            run = subprocess.run(["bash", "-c", r.stdout.split("\n", 1)[1]], cwd=d, capture_output=True, text=True,
+                                 env=dict(os.environ, SLURM_ARRAY_TASK_ID="0", SLURM_CPUS_PER_TASK="1"))
+            self.assertEqual(run.returncode, 0, run.stderr)
+            self.assertEqual(sorted(os.listdir(d)), ["f.-002.exr"])
+
+    def test_ranges_wider_than_max_array_size_and_names_without_a_frame_are_refused(self):
+        r = script("submit_slurm.py", "--frames", "1-20", "-o", "o.#.exr", "--dry-run", "--max-array-size", "10", "--",
+                   "builtin:cloud")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("frames 1 to 20 span more than MaxArraySize 10", r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         r = script("submit_slurm.py", "--frames", "1-2", "-o", "o.exr", "--dry-run", "--", "builtin:cloud")
         self.assertIn("has no frame number", r.stderr)
 
