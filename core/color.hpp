@@ -2,7 +2,8 @@
 // Colour management through OpenColorIO. weft renders scene-linear Rec.709;
 // previews go through a display transform. With $OCIO set, the studio's
 // config (its default display and view) is used; otherwise a small built-in
-// config: linear Rec.709 -> sRGB display (IEC 61966-2-1 curve).
+// config: lin_rec709 (the scene_linear role), acescg (linear AP1 primaries,
+// ACEScg) and srgb_display (IEC 61966-2-1 curve); its display is sRGB.
 #include <memory>
 #include <string>
 
@@ -18,5 +19,20 @@ public:
 
 // The process-wide display transform (built once, thread-safe to use).
 const DisplayTransform& displayTransform();
+
+class Image;
+
+// A conversion between two colour spaces of the active config, applied to
+// the R, G, B channels of an image (alpha and other channels kept). Colours
+// are un-premultiplied by alpha around the conversion where 0 < alpha < 1,
+// so non-linear encodings see the surface colour; non-finite results are 0.
+class ColorConversion {
+public:
+    virtual ~ColorConversion() = default;
+    virtual void apply(Image& image) const = 0;
+};
+
+// An Error naming the colour space (and listing the config's) when one is unknown.
+std::unique_ptr<ColorConversion> colorConversion(const std::string& from, const std::string& to);
 
 }  // namespace weft

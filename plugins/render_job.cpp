@@ -211,12 +211,13 @@ std::vector<RenderRequest> requestsForFrames(const RenderRequest& r, const std::
     return out;
 }
 
-int runRenders(const std::vector<RenderRequest>& requests) {
+int runRenders(const std::vector<RenderRequest>& requests, const AfterRender& after) {
     for (const RenderRequest& q : requests) checkOutputs(q);  // unwritable outputs fail before any render
     int failed = 0;
     for (const RenderRequest& q : requests) {
         try {
-            runRender(q);
+            RenderOutcome out = runRender(q);
+            if (after) after(q, out);
         } catch (const std::exception& e) {
             ++failed;
             const std::string frame = q.frame ? "frame " + std::to_string(*q.frame) + ": " : "";

@@ -4,6 +4,7 @@
 // each atomically. Every check that can fail on user input runs before the
 // render starts, so bad input never costs render time or leaves files.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,9 +51,11 @@ RenderOutcome runRender(const RenderRequest& request);
 // every output name, or they would overwrite each other: an Error says so.
 std::vector<RenderRequest> requestsForFrames(const RenderRequest& request, const std::vector<int>& frames);
 
-// Renders each request in turn; a failing one prints its error (naming the
-// frame) and the others go on. Returns how many failed.
-int runRenders(const std::vector<RenderRequest>& requests);
+// Renders each request in turn, then hands its outcome to `after` (chained
+// steps); a failing one prints its error (naming the frame) and the others
+// go on. Returns how many failed.
+using AfterRender = std::function<void(const RenderRequest&, RenderOutcome&)>;
+int runRenders(const std::vector<RenderRequest>& requests, const AfterRender& after = {});
 
 // "WxH" -> (W, H), each in [1, 65536]; anything else is an error naming the text.
 std::pair<int, int> parseResolution(const std::string& text);

@@ -3,6 +3,8 @@
 // an EXR, guided by the normal and position layers stored beside it. Every
 // other channel and the input's metadata are kept; the filter's parameters
 // are added as weft:filter:atrous:<key>.
+// As a chain step after a render (plugins/host/chain.hpp):
+//   weft render scene.json atrous --set layer=indirect write out.exr
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -11,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "plugins/command.hpp"
+#include "plugins/chain.hpp"
 #include "plugins/filter_atrous/atrous_params.hpp"
 
 namespace weft {
@@ -34,13 +37,21 @@ struct FilterOptions {
     bool verbose = false;
 };
 
-void runFilter(const FilterOptions& o) {
+ParamSet parseSets(const std::vector<std::string>& sets) {
     std::map<std::string, std::string> given;
-    for (const std::string& kv : o.sets) {
+    for (const std::string& kv : sets) {
         auto [k, v] = splitKeyValue(kv, "--set");
         given[k] = v;
     }
-    const ParamSet params = filterTable().parse(given);
+    return filterTable().parse(given);
+}
+
+void filterImage(Image& image, const ParamSet& params, const AtrousSettings& settings) {
+    atrousFilterImage(image, params.getString("layer"), params.getString("normal"), params.getString("position"), settings);
+}
+
+void runFilter(const FilterOptions& o) {
+    const ParamSet params = parseSets(o.sets);
     const AtrousSettings settings = atrousSettingsFrom(params);
     checkOutputPath(o.output, "output");
     if (!o.preview.empty()) checkOutputPath(o.preview, "preview");
@@ -48,7 +59,7 @@ void runFilter(const FilterOptions& o) {
     Image image = readImage(o.input, &metadata);
     const auto start = std::chrono::steady_clock::now();
     try {
-        atrousFilterImage(image, params.getString("layer"), params.getString("normal"), params.getString("position"), settings);
+        filterImage(image, params, settings);
     } catch (const Error& e) {
         throw Error("'" + o.input + "': " + e.what());
     }
@@ -71,6 +82,27 @@ const CommandRegistrar registrar{{"filter", 40, [](CLI::App& app) {
     atrous->add_option("--set", o->sets, "filter parameter key=value")->allow_extra_args(false);
     atrous->add_flag("-v,--verbose", o->verbose, "print the filter time");
     atrous->callback([o] { runFilter(*o); });
+}}};
+
+// The chain step: the same filter on the previous result.
+void addAtrousStep(const std::vector<std::string>& sets) {
+    const ParamSet params = parseSets(sets);
+    const AtrousSettings settings = atrousSettingsFrom(params);
+    std::string text = "atrous";
+    for (const std::string& kv : sets) text += " " + kv;
+    addChainStep({"atrous", std::nullopt, [params, settings, text](ChainImage& in) {
+        filterImage(in.image, params, settings);
+        for (const auto& [k, v] : params.values()) in.metadata.emplace_back("weft:filter:atrous:" + k, v);
+        in.steps.push_back(text);
+    }});
+}
+
+const CommandRegistrar atrousStep{{"atrous", 44, [](CLI::App& app) {
+    auto* cmd = app.add_subcommand("atrous", "chain step: A-Trous filter the previous result (parameters as `weft filter atrous`)");
+    auto sets = std::make_shared<std::vector<std::string>>();
+    cmd->add_option("--set", *sets, "filter parameter key=value")->allow_extra_args(false);
+    cmd->callback([sets] { addAtrousStep(*sets); });
+    cmd->immediate_callback();
 }}};
 
 }  // namespace

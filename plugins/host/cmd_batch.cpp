@@ -15,7 +15,6 @@
 #include "core/error.hpp"
 #include "core/frames.hpp"
 #include "plugins/command.hpp"
-#include "plugins/host/chain.hpp"
 #include "plugins/render_job.hpp"
 #include "plugins/technique.hpp"
 
@@ -99,7 +98,6 @@ const CommandRegistrar registrar{{"batch", 16, [](CLI::App& app) {
     cmd->add_option("jobs", *path, "batch .json: {\"jobs\": [{\"input\", \"output\", \"frames\", ...}]}")->required();
     cmd->callback([path] {
         if (runRenders(loadBatch(*path)) > 0) commandExitStatus() = 1;
-        chainState().wroteFile = true;
     });
 }}};
 

@@ -1,9 +1,9 @@
 // weft render INPUT -o OUT.exr [options]: one frame, a frame range
 // (--frames, names with # or @) or one tile of a frame (--tile i/n).
-// Without -o the image waits for chained steps (see chain.hpp).
+// Without -o the image goes to chained steps (see chain.hpp).
 #include "core/frames.hpp"
 #include "plugins/command.hpp"
-#include "plugins/host/chain.hpp"
+#include "plugins/chain.hpp"
 #include "plugins/render_job.hpp"
 
 namespace weft {
@@ -15,18 +15,9 @@ struct RenderCommand {
     std::string frames;
 };
 
-void renderFrames(const RenderCommand& c) {
-    if (c.request.output.empty()) throw Error("--frames needs -o with a frame number, e.g. -o out.#.exr");
-    const auto requests = requestsForFrames(c.request, parseFrameRange(c.frames));
-    if (runRenders(requests) > 0) commandExitStatus() = 1;
-    chainState().wroteFile = true;
-}
-
-void renderOne(const RenderCommand& c) {
-    RenderOutcome out = runRender(c.request);
-    ChainState& chain = chainState();
-    chain.wroteFile = chain.wroteFile || !c.request.output.empty() || !c.request.preview.empty();
-    chain.current = ChainImage{std::move(out.image), std::move(out.metadata), out.window, {}};
+std::vector<RenderRequest> requestsOf(const RenderCommand& c) {
+    if (c.frames.empty()) return {c.request};
+    return requestsForFrames(c.request, parseFrameRange(c.frames));
 }
 
 const CommandRegistrar registrar{{"render", 10, [](CLI::App& app) {
@@ -47,8 +38,8 @@ const CommandRegistrar registrar{{"render", 10, [](CLI::App& app) {
     cmd->add_option("--seed", r->seed, "random seed (same seed, same image)");
     cmd->add_option("--threads", r->threads, "worker threads, 0 = all cores");
     cmd->add_flag("-v,--verbose", r->verbose, "print the counter table and timings");
-    cmd->callback([c] { c->frames.empty() ? renderOne(*c) : renderFrames(*c); });
-    cmd->immediate_callback();  // chained steps run in command-line order
+    cmd->callback([c] { setChainRender(requestsOf(*c)); });
+    cmd->immediate_callback();  // steps after it on the command line attach to it
 }}};
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <iostream>
 
 #include "plugins/command.hpp"
-#include "plugins/host/chain.hpp"
+#include "plugins/chain.hpp"
 #include "plugins/plugin_api.hpp"
 
 namespace {
@@ -36,8 +36,8 @@ int run(int argc, char** argv) {
     }
     if (list) listPlugins();
     else if (app.get_subcommands().empty()) std::cout << app.help();
-    else if (weft::chainState().current && !weft::chainState().wroteFile)
-        throw weft::Error("nothing written: give render -o FILE.exr, --preview, or a 'write' step");
+    else if (weft::chainHasRender() && weft::runChain() > 0)
+        return 1;
     return weft::commandExitStatus();
 }
 

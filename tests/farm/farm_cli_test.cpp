@@ -2,6 +2,7 @@
 // names, frame-keyed scenes, tiles and merge, chained steps, batch files.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -205,6 +206,74 @@ TEST(FarmChain, StepsWithoutAnImageOrAnOutputAreErrors) {
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.output.find("nothing written"), std::string::npos) << r.output;
     EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+TEST(FarmChain, StepsRunOnEveryFrameWithFrameNumberedNames) {
+    TempDir dir;
+    writeProceduralVdb(dir / "seq.0001.vdb", "sphere", 16);
+    writeProceduralVdb(dir / "seq.0002.vdb", "cloud", 16);
+    const std::string render = "render " + s(dir / "seq.#.vdb") + " --frames 1-2 --res 16x12 ";
+    auto r = runWeft(render + "exposure 1 write " + s(dir / "one.exr"));  // both frames would write one file
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("'write': '" + s(dir / "one.exr") + "' has no frame number"), std::string::npos) << r.output;
+    r = runWeft(render + "exposure 1 preview " + s(dir / "p.#.png") + " write " + s(dir / "x.#.exr"));
+    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_EQ(runWeft(render + "-o " + s(dir / "plain.#.exr")).status, 0);
+    for (const char* f : {"0001", "0002"}) {
+        weft::Metadata md;
+        const weft::Image x = load(dir / ("x." + std::string(f) + ".exr"), &md), plain = load(dir / ("plain." + std::string(f) + ".exr"));
+        EXPECT_TRUE(fs::exists(dir / ("p." + std::string(f) + ".png")));
+        EXPECT_EQ(meta(md, "weft:frame"), std::string(1, f[3]));
+        EXPECT_EQ(meta(md, "weft:chain"), "exposure 1");
+        for (int y = 0; y < x.height(); ++y)
+            for (int px = 0; px < x.width(); ++px) EXPECT_EQ(x.at(px, y, 0), 2.0f * plain.at(px, y, 0));
+    }
+}
+
+TEST(FarmChain, AtrousStepIsTheFilterCommand) {
+    TempDir dir;
+    const std::string render = "render builtin:cloud --res 24x16 --spp 2 --set jitter=true ";
+    const std::string sets = "--set levels=3 --set sigma_color=0.2 --set sigma_normal=0 --set sigma_position=0";
+    ASSERT_EQ(runWeft(render + "-o " + s(dir / "noisy.exr")).status, 0);
+    ASSERT_EQ(runWeft("filter atrous " + s(dir / "noisy.exr") + " -o " + s(dir / "filtered.exr") + " " + sets).status, 0);
+    const auto r = runWeft(render + "atrous " + sets + " write " + s(dir / "chained.exr"));
+    ASSERT_EQ(r.status, 0) << r.output;
+    weft::Metadata md;
+    const weft::Image chained = load(dir / "chained.exr", &md);
+    EXPECT_TRUE(samePixels(chained, load(dir / "filtered.exr")));
+    EXPECT_FALSE(samePixels(chained, load(dir / "noisy.exr")));
+    EXPECT_EQ(meta(md, "weft:filter:atrous:levels"), "3");
+    EXPECT_EQ(meta(md, "weft:chain"), "atrous levels=3 sigma_color=0.2 sigma_normal=0 sigma_position=0");
+}
+
+TEST(FarmChain, ColorconvertGoesThroughOpenColorIO) {
+    TempDir dir;
+    const std::string render = "render builtin:cloud --res 16x12 --seed 4 ";
+    ASSERT_EQ(runWeft(render + "-o " + s(dir / "lin.exr")).status, 0);
+    auto r = runWeft(render + "colorconvert lin_rec709 acescg write " + s(dir / "ap1.exr") +
+                     " colorconvert acescg lin_rec709 write " + s(dir / "back.exr"));
+    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_EQ(runWeft(render + "colorconvert lin_rec709 srgb_display write " + s(dir / "srgb.exr")).status, 0);
+    const weft::Image lin = load(dir / "lin.exr"), ap1 = load(dir / "ap1.exr"), back = load(dir / "back.exr"), srgb = load(dir / "srgb.exr");
+    int partlyCovered = 0;
+    for (int y = 0; y < lin.height(); ++y)
+        for (int x = 0; x < lin.width(); ++x) {
+            const float a = lin.at(x, y, 3), R = lin.at(x, y, 0), G = lin.at(x, y, 1), B = lin.at(x, y, 2);
+            EXPECT_NEAR(ap1.at(x, y, 0), 0.6130974f * R + 0.3395231f * G + 0.0473795f * B, 1e-5f);  // a matrix: premultiplication commutes
+            for (int c = 0; c < 4; ++c) EXPECT_NEAR(back.at(x, y, c), lin.at(x, y, c), 1e-5f);
+            EXPECT_EQ(srgb.at(x, y, 3), a);
+            if (a > 0.01f && a < 0.99f) {  // the curve applies to the un-premultiplied colour
+                ++partlyCovered;
+                const float v = R / a, encoded = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+                EXPECT_NEAR(srgb.at(x, y, 0), encoded * a, 1e-4f);
+            }
+        }
+    EXPECT_GT(partlyCovered, 0);
+    r = runWeft(render + "colorconvert lin_rec709 rec2020 write " + s(dir / "x.exr"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("unknown colour space 'rec2020'"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("acescg"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "x.exr"));
 }
 
 TEST(FarmBatch, RendersEveryJobAndChecksAllJobsFirst) {
