@@ -1,5 +1,6 @@
 #include "core/atomic_file.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -25,7 +26,7 @@ AtomicOutput::~AtomicOutput() {
 void AtomicOutput::commit() {
     // Fault-injection hook for the kill tests: hold the finished temporary
     // file this long before the rename, so a kill lands between the two.
-    if (const char* ms = std::getenv("WEFT_TEST_PAUSE_BEFORE_RENAME_MS")) usleep(useconds_t(std::atoi(ms)) * 1000);
+    if (const char* ms = std::getenv("WEFT_TEST_PAUSE_BEFORE_RENAME_MS")) usleep(useconds_t(std::clamp(std::atoi(ms), 0, 60000)) * 1000);
     std::error_code ec;
     fs::rename(temp_, final_, ec);
     if (ec) throw Error("cannot write '" + final_ + "': " + ec.message());
