@@ -8,7 +8,9 @@ MSE table  MSE of the incident indirect illumination (the indirect.RGB AOV)
            indirect samples (--spp per surface pixel): uniform unfiltered,
            uniform + A-Trous, adaptive + A-Trous. The A-Trous level count is
            the one that minimises the uniform + A-Trous MSE (levels 2..6), and
-           the adaptive mode uses the same filter, as the paper does. The
+           the adaptive mode uses the same filter, as the paper does, with its
+           taps weighted by their sample counts (count_weights, weft's
+           default) and without (the paper's filter). The
            reference's own noise adds var/ref_spp to every MSE; it is estimated
            from the unfiltered uniform image (whose expected MSE is
            var/spp + var/ref_spp) and the "corrected" ratio takes it out.
@@ -22,7 +24,7 @@ with 1024-spp references; the defaults here (256x192, 1024-spp references)
 run in a few minutes on two cores.
 
 Usage: bench/bauszat_tables.py [--data DIR] [--out DIR] [--res WxH] [--spp N] [--ref-spp N]
-                               [--min-samples N] [--threads N] [--scenes a,b] [--tables mse,overhead]
+                               [--min-samples N] [--seeds N] [--reuse-ref] [--threads N] [--scenes a,b] [--tables mse,overhead]
                                [--images DIR]
 """
 import argparse
@@ -76,39 +78,54 @@ def mse(a, b):
     return float(np.mean((a - b) ** 2))
 
 
+def seed_mses(scene, name, tag, sets, args, ref_e):
+    """MSE of indirect.RGB for seeds 1..--seeds, the layers of seed 1, the sample totals."""
+    errors, first, samples = [], None, set()
+    for seed in range(1, args.seeds + 1):
+        img, st = render(scene, os.path.join(args.out, "%s_%s_s%d.exr" % (name, tag, seed)), args.res, args.spp, seed,
+                         args.threads, sets)
+        errors.append(mse(indirect(img), ref_e))
+        samples.add(st["counters"]["samples.indirect"])
+        first = first or img
+    return np.array(errors), first, samples
+
+
 def mse_table(scenes, args):
     print("\nMSE of the incident indirect illumination (indirect.RGB) vs a %d-spp reference, %s, %d indirect samples per"
-          " surface pixel (adaptive: the same total, at least %d per pixel), %d threads"
-          % (args.ref_spp, args.res, args.spp, args.min_samples, args.threads))
-    print("%-8s %7s %12s %12s %12s %12s %12s %8s %10s %9s" % ("scene", "levels", "uniform", "uni+atrous", "adapt+atrous",
-                                                           "adapt (raw)", "ref. noise", "ratio", "corrected", "samples"))
+          " surface pixel (adaptive: the same total, at least %d per pixel), mean of %d seeds, %d threads"
+          % (args.ref_spp, args.res, args.spp, args.min_samples, args.seeds, args.threads))
+    print("%-8s %6s %10s %10s %12s %12s %10s %16s %16s %9s" % ("scene", "levels", "uniform", "uni+atrous", "adapt+atrous",
+                                                             "adapt(plain)", "ref.noise", "corrected", "(plain)", "samples"))
     results = {}
     for name, scene in scenes.items():
-        ref, _ = render(scene, os.path.join(args.out, name + "_ref.exr"), args.res, args.ref_spp, 1000, args.threads,
-                        ["mode=uniform", "direct_samples=0"])
+        ref_path = os.path.join(args.out, "%s_ref_%s_%d.exr" % (name, args.res, args.ref_spp))
+        if args.reuse_ref and os.path.exists(ref_path):
+            ref = read_layers(ref_path)
+        else:
+            ref, _ = render(scene, ref_path, args.res, args.ref_spp, 1000, args.threads, ["mode=uniform", "direct_samples=0"])
         ref_e = indirect(ref)
-        best = None
-        for levels in range(2, 7):
-            img, st = render(scene, os.path.join(args.out, "%s_uniform_atrous_%d.exr" % (name, levels)), args.res,
-                             args.spp, 1, args.threads, ["mode=uniform_atrous", "levels=%d" % levels] + args.set)
-            e = mse(indirect(img), ref_e)
-            if best is None or e < best[0]:
-                best = (e, levels, img, st)
-        e_ua, levels, ua, st_ua = best
-        uni, st_u = render(scene, os.path.join(args.out, name + "_uniform.exr"), args.res, args.spp, 1, args.threads,
-                           ["mode=uniform"])
-        ada, st_a = render(scene, os.path.join(args.out, name + "_adaptive.exr"), args.res, args.spp, 1, args.threads,
-                           ["mode=adaptive_atrous", "levels=%d" % levels, "min_samples=%d" % args.min_samples] + args.set)
-        e_u, e_a, e_araw = mse(indirect(uni), ref_e), mse(indirect(ada), ref_e), mse(indirect(ada, "indirect_raw"), ref_e)
-        samples = {k: s["counters"]["samples.indirect"] for k, s in (("u", st_u), ("ua", st_ua), ("a", st_a))}
-        assert samples["u"] == samples["ua"] == samples["a"], samples
-        noise = e_u / (1.0 + args.ref_spp / args.spp)  # var / ref_spp
-        print("%-8s %7d %12.6f %12.6f %12.6f %12.6f %12.6f %7.1f%% %9.1f%% %9d"
-              % (name, levels, e_u, e_ua, e_a, e_araw, noise, 100 * e_a / e_ua, 100 * (e_a - noise) / (e_ua - noise),
-                 samples["a"]))
+        by_level = {lv: seed_mses(scene, name, "uniform_atrous_%d" % lv, ["mode=uniform_atrous", "levels=%d" % lv] + args.set,
+                                  args, ref_e) for lv in range(2, 7)}
+        levels = min(by_level, key=lambda lv: by_level[lv][0].mean())
+        e_ua, ua, samples = by_level[levels]
+        e_u, uni, s_u = seed_mses(scene, name, "uniform", ["mode=uniform"], args, ref_e)
+        adaptive = ["mode=adaptive_atrous", "levels=%d" % levels, "min_samples=%d" % args.min_samples] + args.set
+        e_a, ada, s_a = seed_mses(scene, name, "adaptive", adaptive + ["count_weights=true"], args, ref_e)
+        e_p, _, s_p = seed_mses(scene, name, "adaptive_plain", adaptive + ["count_weights=false"], args, ref_e)
+        assert len(samples | s_u | s_a | s_p) == 1, (samples, s_u, s_a, s_p)
+        noise = e_u.mean() / (1.0 + args.ref_spp / args.spp)  # var / ref_spp
+        base = e_ua.mean() - noise
+
+        def corrected(e):  # percentage of uniform + A-Trous, +- two standard errors of the difference
+            two_se = 2 * np.sqrt((e.var(ddof=1) + e_ua.var(ddof=1)) / len(e)) if len(e) > 1 else float("nan")
+            return "%6.1f%% +- %4.1f" % (100 * (e.mean() - noise) / base, 100 * two_se / base)
+        print("%-8s %6d %10.6f %10.6f %12.6f %12.6f %10.6f %16s %16s %9d"
+              % (name, levels, e_u.mean(), e_ua.mean(), e_a.mean(), e_p.mean(), noise, corrected(e_a), corrected(e_p),
+                 samples.pop()))
         results[name] = (ref, uni, ua, ada)
-    print("ratio: adaptive + A-Trous MSE as a percentage of uniform + A-Trous (below 100%: adaptive is better);"
-          " corrected: both with the reference noise taken out")
+    print("corrected: adaptive + A-Trous MSE as a percentage of uniform + A-Trous, both with the reference's own noise"
+          " taken out, +- two standard errors over the seeds (below 100%: adaptive is better); adapt+atrous weights the"
+          " filter's taps by their sample counts (count_weights, the default), adapt(plain) is the paper's filter")
     return results
 
 
@@ -143,6 +160,8 @@ def main():
     p.add_argument("--spp", type=int, default=4)
     p.add_argument("--ref-spp", type=int, default=1024)
     p.add_argument("--min-samples", type=int, default=2)
+    p.add_argument("--reuse-ref", action="store_true", help="keep a reference already rendered at this size and rate")
+    p.add_argument("--seeds", type=int, default=3, help="seeds per filtered configuration (MSEs are their mean)")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--scenes", default="cornell,glossy,bunny")
     p.add_argument("--tables", default="mse,overhead")

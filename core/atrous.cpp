@@ -30,6 +30,7 @@ struct Level {
     const GeometryGuides& guides;
     const std::vector<float>& in;
     const std::vector<std::uint8_t>& validIn;
+    const float* tapWeight;  // per pixel, multiplies each tap; null: 1
 };
 
 // Range-weight exponent between pixels p and q.
@@ -60,6 +61,7 @@ bool filterPixel(const Level& l, int x, int y, float* out) {
             const std::size_t q = std::size_t(qy) * l.width + std::size_t(qx);
             if (!l.validIn[q]) continue;
             float w = kB3Taps[i + 2] * kB3Taps[j + 2];
+            if (l.tapWeight) w *= l.tapWeight[q];
             if (q != p) {
                 w *= std::exp(-rangeExponent(l, p, q, colorTerm));
                 if (!(w > 0)) continue;  // zero, or NaN from non-finite guides
@@ -83,6 +85,15 @@ void checkGuide(const VectorPlanes& v, float sigma, std::size_t pixels, const ch
         if (plane.size() != pixels) throw Error(std::string("atrous: the ") + name + " guide does not cover the image");
 }
 
+// Tap weights must be finite and >= 0; zero makes a pixel a missing sample
+// for its neighbours (its own tap is then its only weight).
+void checkTapWeights(const TapWeights& t, std::size_t pixels) {
+    if (t.perPixel.empty()) return;
+    if (t.perPixel.size() != pixels) throw Error("atrous: the tap weights do not cover the image");
+    for (float w : t.perPixel)
+        if (!(w >= 0 && std::isfinite(w))) throw Error("atrous: tap weights must be finite and not negative");
+}
+
 }  // namespace
 
 void validate(const AtrousSettings& s) {
@@ -95,18 +106,21 @@ void validate(const AtrousSettings& s) {
 }
 
 void atrousFilter(std::vector<float>& color, int width, int height, const GeometryGuides& guides,
-                  const AtrousSettings& s) {
+                  const AtrousSettings& s, const TapWeights& tapWeights) {
     validate(s);
     const std::size_t pixels = std::size_t(width) * height;
     if (color.size() != 3 * pixels) throw Error("atrous: colour buffer does not match the image size");
+    checkTapWeights(tapWeights, pixels);
     checkGuide(guides.normal, s.sigmaNormal, pixels, "normal");
     checkGuide(guides.position, s.sigmaPosition, pixels, "position");
     std::vector<std::uint8_t> valid = markValid(color), validNext(pixels);
     std::vector<float> next(color.size());
     float sigmaColor = s.sigmaColor;
     for (int level = 0; level < s.levels; ++level) {
+        const bool weighted = !tapWeights.perPixel.empty() && level < tapWeights.levels;
         const Level l{width, height, 1 << level, inverseSquare(sigmaColor), inverseSquare(s.sigmaNormal),
-                      inverseSquare(s.sigmaPosition), guides, color, valid};
+                      inverseSquare(s.sigmaPosition), guides, color, valid,
+                      weighted ? tapWeights.perPixel.data() : nullptr};
         tbb::parallel_for(0, height, [&](int y) {
             enableFastFloatMode();  // every thread the same: tiny weights flush to 0 alike
             for (int x = 0; x < width; ++x) {
@@ -143,10 +157,26 @@ VectorPlanes readPlanes(const Image& image, const std::vector<std::string>& name
     return v;
 }
 
+// Tap weights on every level from one channel ('' = none).
+TapWeights readTapWeights(const Image& image, const std::string& channel, std::string& missing) {
+    TapWeights t;
+    if (channel.empty()) return t;
+    const int ch = image.channelIndex(channel);
+    if (ch < 0) {
+        missing += (missing.empty() ? "" : ", ") + channel;
+        return t;
+    }
+    const std::size_t pixels = std::size_t(image.width()) * image.height();
+    t.perPixel.resize(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) t.perPixel[i] = image.data()[i * image.channelCount() + ch];
+    t.levels = kMaxLevels;
+    return t;
+}
+
 }  // namespace
 
 void atrousFilterImage(Image& image, const std::string& layer, const std::string& normalLayer,
-                       const std::string& positionLayer, const AtrousSettings& s) {
+                       const std::string& positionLayer, const AtrousSettings& s, const std::string& weightChannel) {
     validate(s);
     std::string missing;
     const auto colorNames = layer.empty() ? std::vector<std::string>{"R", "G", "B"} : layerChannels(layer, "R", "G", "B");
@@ -154,12 +184,13 @@ void atrousFilterImage(Image& image, const std::string& layer, const std::string
     GeometryGuides g{image.width(), image.height(), {}, {}};
     if (s.sigmaNormal != AtrousSettings::kOff) g.normal = readPlanes(image, layerChannels(normalLayer, "X", "Y", "Z"), missing);
     if (s.sigmaPosition != AtrousSettings::kOff) g.position = readPlanes(image, layerChannels(positionLayer, "X", "Y", "Z"), missing);
+    const TapWeights weights = readTapWeights(image, weightChannel, missing);
     if (!missing.empty())
         throw Error("the image has no channel " + missing + " (the normal and position guides are needed only while their sigmas are on)");
     const std::size_t pixels = std::size_t(image.width()) * image.height();
     std::vector<float> color(3 * pixels);
     for (std::size_t i = 0; i < pixels; ++i) color[3 * i] = rgb.c[0][i], color[3 * i + 1] = rgb.c[1][i], color[3 * i + 2] = rgb.c[2][i];
-    atrousFilter(color, image.width(), image.height(), g, s);
+    atrousFilter(color, image.width(), image.height(), g, s, weights);
     const int stride = image.channelCount();
     for (int k = 0; k < 3; ++k) {
         const int ch = image.channelIndex(colorNames[k]);

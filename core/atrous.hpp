@@ -54,9 +54,20 @@ struct AtrousSettings {
 // Throws weft::Error naming the setting when one is out of range.
 void validate(const AtrousSettings& settings);
 
+// Optional per-pixel weights that multiply every tap of a pixel (its own
+// included) on the first `levels` levels: a pixel's sample count makes the
+// first level pool samples, as if every pixel's samples were averaged
+// together, instead of averaging pixel means of unequal quality. Empty: 1.
+// Weights must be finite and >= 0; a pixel of weight 0 counts as a missing
+// sample on those levels.
+struct TapWeights {
+    std::vector<float> perPixel;
+    int levels = 0;
+};
+
 // Filters `color` (3 floats per pixel, row-major, width x height) in place.
 void atrousFilter(std::vector<float>& color, int width, int height, const GeometryGuides& guides,
-                  const AtrousSettings& settings);
+                  const AtrousSettings& settings, const TapWeights& tapWeights = {});
 
 // The B3-spline taps h(-2..2).
 constexpr std::array<float, 5> kB3Taps = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
@@ -73,8 +84,11 @@ inline float inverseSquare(float sigma) { return sigma == AtrousSettings::kOff ?
 
 // Image-level filter: channels `layer`.R/G/B (R, G, B when the layer is
 // empty) of `image`, guided by `normalLayer`.X/Y/Z and `positionLayer`.X/Y/Z
-// when their sigmas are finite. Missing channels are one error naming them.
+// when their sigmas are finite, every tap weighted by channel
+// `weightChannel` on every level when it is not empty (e.g. sampleCount).
+// Missing channels are one error naming them.
 void atrousFilterImage(Image& image, const std::string& layer, const std::string& normalLayer,
-                       const std::string& positionLayer, const AtrousSettings& settings);
+                       const std::string& positionLayer, const AtrousSettings& settings,
+                       const std::string& weightChannel = "");
 
 }  // namespace weft

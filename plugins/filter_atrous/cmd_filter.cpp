@@ -26,6 +26,7 @@ const ParamTable& filterTable() {
         specs.push_back(stringParam("layer", "", "RGB layer to filter: '' = R,G,B; 'indirect' = indirect.R/G/B"));
         specs.push_back(stringParam("normal", "N", "normal layer (its .X/.Y/.Z channels; zero = background)"));
         specs.push_back(stringParam("position", "P", "world position layer (its .X/.Y/.Z channels)"));
+        specs.push_back(stringParam("weights", "", "channel that weights every tap, e.g. sampleCount (a pixel's sample count); '' = none"));
         return specs;
     }());
     return table;
@@ -47,7 +48,8 @@ ParamSet parseSets(const std::vector<std::string>& sets) {
 }
 
 void filterImage(Image& image, const ParamSet& params, const AtrousSettings& settings) {
-    atrousFilterImage(image, params.getString("layer"), params.getString("normal"), params.getString("position"), settings);
+    atrousFilterImage(image, params.getString("layer"), params.getString("normal"), params.getString("position"), settings,
+                      params.getString("weights"));
 }
 
 void runFilter(const FilterOptions& o) {

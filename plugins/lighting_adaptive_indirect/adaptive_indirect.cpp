@@ -10,7 +10,11 @@
 //   adaptive_atrous  the budget apportioned by geometric importance
 //                    (core/sample_budget.hpp: W_p over a `window`, at least
 //                    `min_samples` per pixel), A-Trous filtered
-// All three trace exactly the same number of indirect samples. Samples are
+// All three trace exactly the same number of indirect samples. With
+// `count_weights` (default) every filter tap is weighted by its pixel's
+// sample count, so a pixel mean of many samples outweighs one of few (the
+// paper's filter weighs them alike; equal counts are unaffected, so the
+// uniform baseline stays the plain filter). Samples are
 // generated in batches of `batch` samples through sample-to-pixel buffers
 // (0: one batch per pixel count, as the paper); the image does not depend on
 // the batch size or the thread count. A pixel left without samples (only
@@ -26,6 +30,8 @@
 // Counters: samples.indirect, rays.camera, rays.indirect, rays.shadow,
 // budget.active_pixels, budget.minimum (applied), budget.invalid_importance.
 #include <tbb/parallel_for.h>
+
+#include <limits>
 
 #include "core/brdf.hpp"
 #include "core/delta_lights.hpp"
@@ -44,6 +50,7 @@ enum class Mode { Uniform, UniformAtrous, AdaptiveAtrous };
 struct Params {
     Mode mode;
     int minSamples, window, bounces, rrDepth, directSamples;
+    bool countWeights;
     std::int64_t batch;
     AtrousSettings atrous;
 };
@@ -55,6 +62,7 @@ Params readParams(const ParamSet& p) {
     v.minSamples = int(p.getInt("min_samples")), v.window = int(p.getInt("window"));
     v.bounces = int(p.getInt("bounces")), v.rrDepth = int(p.getInt("rr_depth"));
     v.directSamples = int(p.getInt("direct_samples")), v.batch = p.getInt("batch");
+    v.countWeights = p.getBool("count_weights");
     v.atrous = atrousSettingsFrom(p);
     return v;
 }
@@ -118,13 +126,23 @@ public:
         std::vector<float> filtered = raw;
         if (p_.mode != Mode::Uniform) {
             ScopedTimer t(ctx.timings, "AT.atrous");
-            atrousFilter(filtered, g.width, g.height, guides, p_.atrous);
+            atrousFilter(filtered, g.width, g.height, guides, p_.atrous, countWeights(counts));
         }
         ScopedTimer t(ctx.timings, "C.compose");
         return compose(scene, g, est, raw, filtered, importance, counts, s.seed, ctx.counters);
     }
 
 private:
+    // Sample counts as tap weights on every level: a pixel mean of many
+    // samples outweighs one of few (equal counts change nothing).
+    TapWeights countWeights(const std::vector<std::uint32_t>& counts) const {
+        TapWeights t;
+        if (!p_.countWeights) return t;
+        t.levels = std::numeric_limits<int>::max();
+        t.perPixel.assign(counts.begin(), counts.end());
+        return t;
+    }
+
     std::vector<std::uint32_t> sampleCounts(const GeometryGuides& guides, const std::vector<std::uint8_t>& active,
                                             std::vector<float>& importance, const RenderSettings& s, RenderContext& ctx) const {
         std::int64_t activePixels = 0;
@@ -198,6 +216,8 @@ ParamTable table() {
         intParam("bounces", 2, 1, 64, "indirect bounces (1: light reflected once on its way to the pixel)"),
         intParam("rr_depth", 3, 1, 1024, "path vertices (the pixel's surface is 1) before Russian roulette may end a path"),
         intParam("direct_samples", 4, 0, 4096, "emitter samples per pixel for the direct light of the beauty image"),
+        boolParam("count_weights", true,
+                  "weight every A-Trous tap by its pixel's sample count (false: the plain filter, as the paper; equal counts are unaffected)"),
         intParam("batch", 0, 0, std::int64_t(1) << 32, "samples per batch (sample-to-pixel buffer size); 0: the pixel count"),
     };
     for (ParamSpec& spec : atrousParamSpecs()) specs.push_back(std::move(spec));

@@ -99,6 +99,12 @@ TEST(AdaptiveIndirect, AdaptiveSamplesEdgesMoreAndLowersTheFilteredError) {
     EXPECT_LT(indirectMse(ada, ref), indirectMse(uni, ref));
 }
 
+TEST(AdaptiveIndirect, CountWeightsChangeNothingAtEqualCounts) {
+    const Image on = renderCornell("30x20", 3, {"mode=uniform_atrous", "count_weights=true"}, 5).image;
+    const Image off = renderCornell("30x20", 3, {"mode=uniform_atrous", "count_weights=false"}, 5).image;
+    for (std::size_t i = 0; i < on.data().size(); ++i) ASSERT_NEAR(on.data()[i], off.data()[i], 1e-5f * (1 + std::abs(off.data()[i]))) << i;
+}
+
 TEST(AdaptiveIndirect, NoNanWithFewerSamplesThanPixelsOrNoFilterLevels) {
     for (const std::vector<std::string>& sets : {std::vector<std::string>{"min_samples=0", "window=10"},
                                                  std::vector<std::string>{"levels=0", "min_samples=0"},

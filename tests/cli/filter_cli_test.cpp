@@ -74,3 +74,35 @@ TEST(FilterCli, MissingGuideLayersAreNamedAndNoFileIsWritten) {
     EXPECT_NE(bad.status, 0);
     EXPECT_NE(bad.output.find("levels"), std::string::npos) << bad.output;
 }
+
+TEST(FilterCli, SampleCountWeightsReproduceTheAdaptiveTechniquesFilter) {
+    // lighting.adaptive_indirect filters indirect_raw with count-weighted taps;
+    // the same filter from the command line, weighted by its sampleCount AOV,
+    // gives its indirect layer on every surface pixel.
+    TempDir dir;
+    const std::string img = (dir / "ai.exr").string(), out = (dir / "f.exr").string();
+    const std::string filter = " --set levels=3 --set sigma_normal=0.3 --set sigma_position=0.1";
+    auto r = runWeft("render " + std::string(WEFT_SOURCE_DIR) + "/scenes/cornell.json --technique lighting.adaptive_indirect"
+                     " --res 64x48 --spp 4 --set direct_samples=0 --set min_samples=1 -o " + img + filter);
+    ASSERT_EQ(r.status, 0) << r.output;
+    r = runWeft("filter atrous " + img + " -o " + out + " --set layer=indirect_raw --set weights=sampleCount" + filter);
+    ASSERT_EQ(r.status, 0) << r.output;
+    const weft::Image a = weft::readImage(img, nullptr), f = weft::readImage(out, nullptr);
+    int surface = 0, unequalCounts = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            if (a.at(x, y, a.channelIndex("N.X")) == 0 && a.at(x, y, a.channelIndex("N.Y")) == 0 &&
+                a.at(x, y, a.channelIndex("N.Z")) == 0)
+                continue;  // background
+            ++surface, unequalCounts += a.at(x, y, a.channelIndex("sampleCount")) != 4.0f;
+            for (const char* c : {"R", "G", "B"})
+                ASSERT_NEAR(f.at(x, y, f.channelIndex(std::string("indirect_raw.") + c)),
+                            a.at(x, y, a.channelIndex(std::string("indirect.") + c)), 1e-5)
+                    << x << "," << y;
+        }
+    EXPECT_GT(surface, 2000);
+    EXPECT_GT(unequalCounts, 300);  // the weights mattered
+    r = runWeft("filter atrous " + img + " -o " + (dir / "g.exr").string() + " --set weights=nothing");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("nothing"), std::string::npos) << r.output;
+}
