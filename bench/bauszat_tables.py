@@ -7,7 +7,8 @@ MSE table  MSE of the incident indirect illumination (the indirect.RGB AOV)
            samples per pixel) for the three modes at the same total number of
            indirect samples (--spp per surface pixel): uniform unfiltered,
            uniform + A-Trous, adaptive + A-Trous. The A-Trous level count is
-           the one that minimises the uniform + A-Trous MSE (levels 2..6), and
+           the one that minimises the uniform + A-Trous MSE (levels 2..6, two
+           seeds), and
            the adaptive mode uses the same filter, as the paper does, with its
            taps weighted by their sample counts (count_weights, weft's
            default) and without (the paper's filter). The
@@ -24,7 +25,7 @@ with 1024-spp references; the defaults here (256x192, 1024-spp references)
 run in a few minutes on two cores.
 
 Usage: bench/bauszat_tables.py [--data DIR] [--out DIR] [--res WxH] [--spp N] [--ref-spp N]
-                               [--min-samples N] [--seeds N] [--reuse-ref] [--threads N] [--scenes a,b] [--tables mse,overhead]
+                               [--min-samples N] [--min-fraction F] [--seeds N] [--reuse-ref] [--threads N] [--scenes a,b] [--tables mse,overhead]
                                [--images DIR]
 """
 import argparse
@@ -78,22 +79,26 @@ def mse(a, b):
     return float(np.mean((a - b) ** 2))
 
 
-def seed_mses(scene, name, tag, sets, args, ref_e):
-    """MSE of indirect.RGB for seeds 1..--seeds, the layers of seed 1, the sample totals."""
-    errors, first, samples = [], None, set()
-    for seed in range(1, args.seeds + 1):
-        img, st = render(scene, os.path.join(args.out, "%s_%s_s%d.exr" % (name, tag, seed)), args.res, args.spp, seed,
-                         args.threads, sets)
-        errors.append(mse(indirect(img), ref_e))
-        samples.add(st["counters"]["samples.indirect"])
-        first = first or img
-    return np.array(errors), first, samples
+_measured = {}  # image path -> (MSE, samples): a seed rendered once per run
+
+
+def seed_mses(scene, name, tag, sets, args, ref_e, seeds=0):
+    """MSE of indirect.RGB for seeds 1..seeds (--seeds), the path of seed 1's image, the sample totals."""
+    errors, samples = [], set()
+    path = lambda seed: os.path.join(args.out, "%s_%s_s%d.exr" % (name, tag, seed))
+    for seed in range(1, (seeds or args.seeds) + 1):
+        if path(seed) not in _measured:
+            img, st = render(scene, path(seed), args.res, args.spp, seed, args.threads, sets)
+            _measured[path(seed)] = (mse(indirect(img), ref_e), st["counters"]["samples.indirect"])
+        errors.append(_measured[path(seed)][0])
+        samples.add(_measured[path(seed)][1])
+    return np.array(errors), path(1), samples
 
 
 def mse_table(scenes, args):
     print("\nMSE of the incident indirect illumination (indirect.RGB) vs a %d-spp reference, %s, %d indirect samples per"
-          " surface pixel (adaptive: the same total, at least %d per pixel), mean of %d seeds, %d threads"
-          % (args.ref_spp, args.res, args.spp, args.min_samples, args.seeds, args.threads))
+          " surface pixel (adaptive: the same total, at least max(%d, floor(%g x %d)) per pixel), mean of %d seeds, %d threads"
+          % (args.ref_spp, args.res, args.spp, args.min_samples, args.min_fraction, args.spp, args.seeds, args.threads))
     print("%-8s %6s %10s %10s %12s %12s %10s %16s %16s %9s" % ("scene", "levels", "uniform", "uni+atrous", "adapt+atrous",
                                                              "adapt(plain)", "ref.noise", "corrected", "(plain)", "samples"))
     results = {}
@@ -104,12 +109,14 @@ def mse_table(scenes, args):
         else:
             ref, _ = render(scene, ref_path, args.res, args.ref_spp, 1000, args.threads, ["mode=uniform", "direct_samples=0"])
         ref_e = indirect(ref)
-        by_level = {lv: seed_mses(scene, name, "uniform_atrous_%d" % lv, ["mode=uniform_atrous", "levels=%d" % lv] + args.set,
-                                  args, ref_e) for lv in range(2, 7)}
-        levels = min(by_level, key=lambda lv: by_level[lv][0].mean())
-        e_ua, ua, samples = by_level[levels]
+        # The level count that minimises uniform + A-Trous on two seeds, then all seeds at it.
+        uniform_atrous = lambda lv, n=0: seed_mses(scene, name, "uniform_atrous_%d" % lv,
+                                                   ["mode=uniform_atrous", "levels=%d" % lv] + args.set, args, ref_e, n)
+        levels = min(range(2, 7), key=lambda lv: uniform_atrous(lv, min(2, args.seeds))[0].mean())
+        e_ua, ua, samples = uniform_atrous(levels)
         e_u, uni, s_u = seed_mses(scene, name, "uniform", ["mode=uniform"], args, ref_e)
-        adaptive = ["mode=adaptive_atrous", "levels=%d" % levels, "min_samples=%d" % args.min_samples] + args.set
+        adaptive = ["mode=adaptive_atrous", "levels=%d" % levels, "min_samples=%d" % args.min_samples,
+                    "min_fraction=%g" % args.min_fraction] + args.set
         e_a, ada, s_a = seed_mses(scene, name, "adaptive", adaptive + ["count_weights=true"], args, ref_e)
         e_p, _, s_p = seed_mses(scene, name, "adaptive_plain", adaptive + ["count_weights=false"], args, ref_e)
         assert len(samples | s_u | s_a | s_p) == 1, (samples, s_u, s_a, s_p)
@@ -122,7 +129,7 @@ def mse_table(scenes, args):
         print("%-8s %6d %10.6f %10.6f %12.6f %12.6f %10.6f %16s %16s %9d"
               % (name, levels, e_u.mean(), e_ua.mean(), e_a.mean(), e_p.mean(), noise, corrected(e_a), corrected(e_p),
                  samples.pop()))
-        results[name] = (ref, uni, ua, ada)
+        results[name] = (ref, read_layers(uni), read_layers(ua), read_layers(ada))
     print("corrected: adaptive + A-Trous MSE as a percentage of uniform + A-Trous, both with the reference's own noise"
           " taken out, +- two standard errors over the seeds (below 100%: adaptive is better); adapt+atrous weights the"
           " filter's taps by their sample counts (count_weights, the default), adapt(plain) is the paper's filter")
@@ -159,7 +166,8 @@ def main():
     p.add_argument("--res", default="256x192")
     p.add_argument("--spp", type=int, default=4)
     p.add_argument("--ref-spp", type=int, default=1024)
-    p.add_argument("--min-samples", type=int, default=2)
+    p.add_argument("--min-samples", type=int, default=1, help="the technique's min_samples (the paper: 2)")
+    p.add_argument("--min-fraction", type=float, default=0.75, help="the technique's min_fraction (the paper: 0)")
     p.add_argument("--reuse-ref", action="store_true", help="keep a reference already rendered at this size and rate")
     p.add_argument("--seeds", type=int, default=3, help="seeds per filtered configuration (MSEs are their mean)")
     p.add_argument("--threads", type=int, default=2)

@@ -9,7 +9,8 @@
 //   uniform_atrous   the same samples, A-Trous filtered
 //   adaptive_atrous  the budget apportioned by geometric importance
 //                    (core/sample_budget.hpp: W_p over a `window`, at least
-//                    `min_samples` per pixel), A-Trous filtered
+//                    max(`min_samples`, floor(`min_fraction` spp)) per
+//                    pixel), A-Trous filtered
 // All three trace exactly the same number of indirect samples. With
 // `count_weights` (default) every filter tap is weighted by its pixel's
 // sample count, so a pixel mean of many samples outweighs one of few (the
@@ -31,6 +32,7 @@
 // budget.active_pixels, budget.minimum (applied), budget.invalid_importance.
 #include <tbb/parallel_for.h>
 
+#include <cmath>
 #include <limits>
 
 #include "core/brdf.hpp"
@@ -50,6 +52,7 @@ enum class Mode { Uniform, UniformAtrous, AdaptiveAtrous };
 struct Params {
     Mode mode;
     int minSamples, window, bounces, rrDepth, directSamples;
+    double minFraction;
     bool countWeights;
     std::int64_t batch;
     AtrousSettings atrous;
@@ -63,6 +66,7 @@ Params readParams(const ParamSet& p) {
     v.bounces = int(p.getInt("bounces")), v.rrDepth = int(p.getInt("rr_depth"));
     v.directSamples = int(p.getInt("direct_samples")), v.batch = p.getInt("batch");
     v.countWeights = p.getBool("count_weights");
+    v.minFraction = p.getFloat("min_fraction");
     v.atrous = atrousSettingsFrom(p);
     return v;
 }
@@ -143,6 +147,11 @@ private:
         return t;
     }
 
+    // The samples every surface pixel gets before the importance shares the rest.
+    int minimumFor(int spp) const {
+        return std::max(p_.minSamples, int(std::floor(p_.minFraction * double(spp))));
+    }
+
     std::vector<std::uint32_t> sampleCounts(const GeometryGuides& guides, const std::vector<std::uint8_t>& active,
                                             std::vector<float>& importance, const RenderSettings& s, RenderContext& ctx) const {
         std::int64_t activePixels = 0;
@@ -158,7 +167,7 @@ private:
             importance = geometryImportance(guides, {p_.window, p_.atrous.sigmaNormal, p_.atrous.sigmaPosition});
         }
         ScopedTimer t(ctx.timings, "SC.counts");
-        SampleCounts c = apportionSamples(importance, active, {std::int64_t(s.spp) * activePixels, p_.minSamples, s.seed});
+        SampleCounts c = apportionSamples(importance, active, {std::int64_t(s.spp) * activePixels, minimumFor(s.spp), s.seed});
         ctx.counters.add("budget.minimum", c.minimum);
         ctx.counters.add("budget.invalid_importance", c.invalidImportance + c.infiniteImportance);
         return std::move(c.counts);
@@ -211,7 +220,10 @@ ParamTable table() {
     std::vector<ParamSpec> specs = {
         enumParam("mode", "adaptive_atrous", {"uniform", "uniform_atrous", "adaptive_atrous"},
                   "indirect samples: spp at every pixel (unfiltered or A-Trous filtered), or the same budget apportioned by geometric importance and filtered"),
-        intParam("min_samples", 2, 0, 1 << 20, "adaptive: indirect samples every surface pixel gets at least (the paper: 1 or 2)"),
+        intParam("min_samples", 1, 0, 1 << 20,
+                 "adaptive: every surface pixel gets at least max(min_samples, floor(min_fraction x spp)) samples (the paper: 1 or 2, min_fraction 0)"),
+        floatParam("min_fraction", 0.75, 0, 1,
+                   "adaptive: the least samples per surface pixel as a fraction of spp; the rest of the budget follows the importance"),
         intParam("window", 4, 2, 10, "adaptive: k x k window of the importance map (W_p of the normal/position weights)"),
         intParam("bounces", 2, 1, 64, "indirect bounces (1: light reflected once on its way to the pixel)"),
         intParam("rr_depth", 3, 1, 1024, "path vertices (the pixel's surface is 1) before Russian roulette may end a path"),

@@ -62,13 +62,29 @@ TEST(AdaptiveIndirect, ModesTraceTheSameBudgetAndTheCountAovAddsUp) {
     std::int64_t samples[3];
     int k = 0;
     for (const char* mode : {"uniform", "uniform_atrous", "adaptive_atrous"}) {
-        const RenderOutcome out = renderCornell("40x30", 3, {std::string("mode=") + mode, "min_samples=1"});
+        const RenderOutcome out = renderCornell("40x30", 3, {std::string("mode=") + mode, "min_samples=1", "min_fraction=0"});
         samples[k] = out.counters.at("samples.indirect");
         EXPECT_EQ(samples[k], 3 * out.counters.at("budget.active_pixels")) << mode;
         EXPECT_NEAR(meanOf(out.image, "sampleCount") * 40 * 30, double(samples[k]), 1e-6) << mode;
         ++k;
     }
     EXPECT_EQ(samples[0], samples[2]);
+}
+
+TEST(AdaptiveIndirect, MinimumIsTheLargerOfMinSamplesAndTheRateFraction) {
+    struct Case { const char* minSamples; const char* minFraction; int spp; std::int64_t minimum; };
+    for (const Case& c : {Case{"min_samples=1", "min_fraction=0.5", 8, 4}, Case{"min_samples=6", "min_fraction=0.5", 8, 6},
+                          Case{"min_samples=1", "min_fraction=0.75", 4, 3}, Case{"min_samples=2", "min_fraction=0", 4, 2},
+                          Case{"min_samples=1", "min_fraction=1", 4, 4}}) {
+        const RenderOutcome out = renderCornell("40x30", c.spp, {"mode=adaptive_atrous", c.minSamples, c.minFraction});
+        EXPECT_EQ(out.counters.at("budget.minimum"), c.minimum) << c.minSamples << " " << c.minFraction;
+        const int cc = out.image.channelIndex("sampleCount"), cn = out.image.channelIndex("N.Z");
+        float least = 1e9f;
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 40; ++x)
+                if (out.image.at(x, y, cn) != 0) least = std::min(least, out.image.at(x, y, cc));
+        EXPECT_GE(least, float(c.minimum)) << c.minSamples << " " << c.minFraction;
+    }
 }
 
 TEST(AdaptiveIndirect, SameImageForAnyThreadCountAndBatchSize) {
@@ -83,7 +99,7 @@ TEST(AdaptiveIndirect, SameImageForAnyThreadCountAndBatchSize) {
 TEST(AdaptiveIndirect, AdaptiveSamplesEdgesMoreAndLowersTheFilteredError) {
     const Image ref = renderCornell("48x48", 512, {"mode=uniform"}, 11).image;
     const Image uni = renderCornell("48x48", 4, {"mode=uniform_atrous"}, 12).image;
-    const Image ada = renderCornell("48x48", 4, {"mode=adaptive_atrous", "min_samples=1"}, 12).image;
+    const Image ada = renderCornell("48x48", 4, {"mode=adaptive_atrous", "min_samples=1", "min_fraction=0"}, 12).image;
     // The count follows the importance: the most important fifth of the
     // pixels gets more samples on average than the least important half.
     const int ci = ada.channelIndex("importance"), cc = ada.channelIndex("sampleCount");
@@ -106,8 +122,8 @@ TEST(AdaptiveIndirect, CountWeightsChangeNothingAtEqualCounts) {
 }
 
 TEST(AdaptiveIndirect, NoNanWithFewerSamplesThanPixelsOrNoFilterLevels) {
-    for (const std::vector<std::string>& sets : {std::vector<std::string>{"min_samples=0", "window=10"},
-                                                 std::vector<std::string>{"levels=0", "min_samples=0"},
+    for (const std::vector<std::string>& sets : {std::vector<std::string>{"min_samples=0", "min_fraction=0", "window=10"},
+                                                 std::vector<std::string>{"levels=0", "min_samples=0", "min_fraction=0"},
                                                  std::vector<std::string>{"sigma_normal=0", "sigma_position=0", "sigma_color=0.001"}}) {
         const Image img = renderCornell("20x20", 1, sets).image;
         for (float v : img.data()) ASSERT_TRUE(std::isfinite(v));

@@ -83,7 +83,7 @@ TEST(FilterCli, SampleCountWeightsReproduceTheAdaptiveTechniquesFilter) {
     const std::string img = (dir / "ai.exr").string(), out = (dir / "f.exr").string();
     const std::string filter = " --set levels=3 --set sigma_normal=0.3 --set sigma_position=0.1";
     auto r = runWeft("render " + std::string(WEFT_SOURCE_DIR) + "/scenes/cornell.json --technique lighting.adaptive_indirect"
-                     " --res 64x48 --spp 4 --set direct_samples=0 --set min_samples=1 -o " + img + filter);
+                     " --res 64x48 --spp 4 --set direct_samples=0 --set min_samples=1 --set min_fraction=0 -o " + img + filter);
     ASSERT_EQ(r.status, 0) << r.output;
     r = runWeft("filter atrous " + img + " -o " + out + " --set layer=indirect_raw --set weights=sampleCount" + filter);
     ASSERT_EQ(r.status, 0) << r.output;
