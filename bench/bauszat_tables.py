@@ -22,7 +22,8 @@ Scenes: the original Cornell box (data/ in the project), McGuire's glossy
 Cornell box and the Stanford bunny on the short box of the original one
 (both from the shared data folder, --data). The paper measured at 1024x768
 with 1024-spp references; the defaults here (256x192, 1024-spp references)
-run in a few minutes on two cores.
+run in a few minutes on two cores, --res 1024x768 in about 40 minutes
+(--reuse-ref keeps the references for a second run).
 
 Usage: bench/bauszat_tables.py [--data DIR] [--out DIR] [--res WxH] [--spp N] [--ref-spp N]
                                [--min-samples N] [--min-fraction F] [--seeds N] [--reuse-ref] [--threads N] [--scenes a,b] [--tables mse,overhead]
