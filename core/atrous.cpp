@@ -85,8 +85,7 @@ void checkGuide(const VectorPlanes& v, float sigma, std::size_t pixels, const ch
         if (plane.size() != pixels) throw Error(std::string("atrous: the ") + name + " guide does not cover the image");
 }
 
-// Tap weights must be finite and >= 0; zero makes a pixel a missing sample
-// for its neighbours (its own tap is then its only weight).
+// Tap weights must be finite and >= 0 (0: a missing sample, see atrous.hpp).
 void checkTapWeights(const TapWeights& t, std::size_t pixels) {
     if (t.perPixel.empty()) return;
     if (t.perPixel.size() != pixels) throw Error("atrous: the tap weights do not cover the image");
@@ -141,36 +140,29 @@ std::vector<std::string> layerChannels(const std::string& layer, const char* a, 
     return {prefix + a, prefix + b, prefix + c};
 }
 
+// One channel as a plane; empty, and its name added to `missing`, when the image lacks it.
+std::vector<float> readChannel(const Image& image, const std::string& name, std::string& missing) {
+    const int ch = image.channelIndex(name);
+    if (ch < 0) {
+        missing += (missing.empty() ? "" : ", ") + name;
+        return {};
+    }
+    std::vector<float> plane(std::size_t(image.width()) * image.height());
+    for (std::size_t i = 0; i < plane.size(); ++i) plane[i] = image.data()[i * image.channelCount() + ch];
+    return plane;
+}
+
 // Reads three channels as planes; names the missing ones in `missing`.
 VectorPlanes readPlanes(const Image& image, const std::vector<std::string>& names, std::string& missing) {
     VectorPlanes v;
-    const std::size_t pixels = std::size_t(image.width()) * image.height();
-    for (int k = 0; k < 3; ++k) {
-        const int ch = image.channelIndex(names[k]);
-        if (ch < 0) {
-            missing += (missing.empty() ? "" : ", ") + names[k];
-            continue;
-        }
-        v.c[k].resize(pixels);
-        for (std::size_t i = 0; i < pixels; ++i) v.c[k][i] = image.data()[i * image.channelCount() + ch];
-    }
+    for (int k = 0; k < 3; ++k) v.c[k] = readChannel(image, names[k], missing);
     return v;
 }
 
 // Tap weights on every level from one channel ('' = none).
 TapWeights readTapWeights(const Image& image, const std::string& channel, std::string& missing) {
-    TapWeights t;
-    if (channel.empty()) return t;
-    const int ch = image.channelIndex(channel);
-    if (ch < 0) {
-        missing += (missing.empty() ? "" : ", ") + channel;
-        return t;
-    }
-    const std::size_t pixels = std::size_t(image.width()) * image.height();
-    t.perPixel.resize(pixels);
-    for (std::size_t i = 0; i < pixels; ++i) t.perPixel[i] = image.data()[i * image.channelCount() + ch];
-    t.levels = kMaxLevels;
-    return t;
+    if (channel.empty()) return {};
+    return TapWeights{readChannel(image, channel, missing), TapWeights::kAllLevels};
 }
 
 }  // namespace

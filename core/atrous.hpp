@@ -61,6 +61,7 @@ void validate(const AtrousSettings& settings);
 // Weights must be finite and >= 0; a pixel of weight 0 counts as a missing
 // sample on those levels.
 struct TapWeights {
+    static constexpr int kAllLevels = std::numeric_limits<int>::max();
     std::vector<float> perPixel;
     int levels = 0;
 };

@@ -33,7 +33,6 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <limits>
 
 #include "core/brdf.hpp"
 #include "core/delta_lights.hpp"
@@ -140,11 +139,8 @@ private:
     // Sample counts as tap weights on every level: a pixel mean of many
     // samples outweighs one of few (equal counts change nothing).
     TapWeights countWeights(const std::vector<std::uint32_t>& counts) const {
-        TapWeights t;
-        if (!p_.countWeights) return t;
-        t.levels = std::numeric_limits<int>::max();
-        t.perPixel.assign(counts.begin(), counts.end());
-        return t;
+        if (!p_.countWeights) return {};
+        return TapWeights{std::vector<float>(counts.begin(), counts.end()), TapWeights::kAllLevels};
     }
 
     // The samples every surface pixel gets before the importance shares the rest.
