@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "core/image_spectrum.hpp"
+#include "core/image/image_spectrum.hpp"
 #include "core/sampling/generators.hpp"
 #include "core/sampling/image_plane.hpp"
-#include "plugins/render_job.hpp"
+#include "plugins/host/render_job.hpp"
 
 using namespace weft;
 

@@ -19,10 +19,10 @@
 #include <string>
 #include <thread>
 
-#include "core/error.hpp"
-#include "core/gbuffer.hpp"
-#include "core/sample_budget.hpp"
-#include "core/sampling.hpp"
+#include "core/base/error.hpp"
+#include "core/screen/gbuffer.hpp"
+#include "core/screen/sample_budget.hpp"
+#include "core/sampling/pixel_sampler.hpp"
 
 using namespace weft;
 

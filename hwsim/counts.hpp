@@ -12,7 +12,7 @@
 //   coarse.tiles_culled              hierarchical Z/stencil tiles rejected whole
 #include <cstdint>
 
-#include "core/counters.hpp"
+#include "core/base/counters.hpp"
 
 namespace weft::hwsim {
 

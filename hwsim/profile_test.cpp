@@ -1,7 +1,7 @@
 // Hardware profiles: the shipped files load, and bad files are clear errors.
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "hwsim/profile.hpp"
 
 namespace weft::hwsim {

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "core/counters.hpp"
-#include "core/image.hpp"
-#include "core/params.hpp"
-#include "core/registry.hpp"
+#include "core/base/counters.hpp"
+#include "core/image/image.hpp"
+#include "core/base/params.hpp"
+#include "core/base/registry.hpp"
 #include "hwsim/counts.hpp"
 #include "hwsim/profile.hpp"
 

@@ -10,8 +10,8 @@
 
 #include <openvdb/openvdb.h>
 
-#include "core/registry.hpp"
-#include "core/volume.hpp"
+#include "core/base/registry.hpp"
+#include "core/volume/volume.hpp"
 
 namespace weft {
 

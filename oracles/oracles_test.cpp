@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "oracles/feature_distance.hpp"
 #include "tests/support/render_helpers.hpp"
 

@@ -6,11 +6,11 @@
 #include <memory>
 #include <string>
 
-#include "core/image.hpp"
-#include "core/params.hpp"
-#include "core/registry.hpp"
-#include "core/render_context.hpp"
-#include "core/scene.hpp"
+#include "core/image/image.hpp"
+#include "core/base/params.hpp"
+#include "core/base/registry.hpp"
+#include "core/base/render_context.hpp"
+#include "core/scene/scene.hpp"
 
 namespace weft {
 

@@ -1,7 +1,7 @@
 // Reconstruction filters: unit integral, the stated support, shape.
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "core/sampling/filters.hpp"
 
 using namespace weft;

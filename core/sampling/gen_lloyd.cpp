@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/generators.hpp"
 #include "core/sampling/torus.hpp"
 

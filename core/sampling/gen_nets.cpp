@@ -5,7 +5,7 @@
 // both coordinates, owen a seeded nested uniform scramble; both keep the net
 // property (every elementary interval of area 1/N holds exactly one point).
 // hammersley defaults to none (the classical deterministic set), lp to xor.
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/generators.hpp"
 
 namespace weft {

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/rng.hpp"
+#include "core/base/error.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/generators.hpp"
 
 namespace weft {

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <memory>
 
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/generators.hpp"
 #include "core/sampling/torus.hpp"
 

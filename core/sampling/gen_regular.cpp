@@ -3,7 +3,7 @@
 //             as count allows): the method of dependent tests when repeated
 //   jittered  one uniform point in each cell of the same grid (stratified)
 //   random    independent uniform points (white noise, the baseline)
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/generators.hpp"
 
 namespace weft {

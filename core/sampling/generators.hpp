@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/params.hpp"
-#include "core/registry.hpp"
+#include "core/base/params.hpp"
+#include "core/base/registry.hpp"
 #include "core/sampling/pattern_set.hpp"
 
 namespace weft {

@@ -1,7 +1,7 @@
 #include "core/sampling/image_plane.hpp"
 
-#include "core/error.hpp"
-#include "core/rng.hpp"
+#include "core/base/error.hpp"
+#include "core/base/rng.hpp"
 
 namespace weft {
 

@@ -30,11 +30,11 @@
 #include <string>
 #include <vector>
 
-#include "core/counters.hpp"
-#include "core/image.hpp"
-#include "core/params.hpp"
-#include "core/pixel_loop.hpp"
-#include "core/render_context.hpp"
+#include "core/base/counters.hpp"
+#include "core/image/image.hpp"
+#include "core/base/params.hpp"
+#include "core/sampling/pixel_loop.hpp"
+#include "core/base/render_context.hpp"
 #include "core/sampling/filters.hpp"
 #include "core/sampling/pattern_set.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 
 namespace weft {
 

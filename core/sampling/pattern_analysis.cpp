@@ -8,7 +8,7 @@
 #include <limits>
 #include <numbers>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "core/sampling/torus.hpp"
 
 namespace weft {

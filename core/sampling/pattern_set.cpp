@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <numeric>
 
-#include "core/error.hpp"
-#include "core/rng.hpp"
+#include "core/base/error.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/generators.hpp"
 
 namespace weft {

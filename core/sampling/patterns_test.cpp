@@ -6,7 +6,7 @@
 #include <numbers>
 #include <set>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "core/sampling/generators.hpp"
 #include "core/sampling/pattern_analysis.hpp"
 #include "core/sampling/pattern_set.hpp"

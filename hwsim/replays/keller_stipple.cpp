@@ -11,7 +11,7 @@
 // Offsets: the regular n x n sub-pixel grid ((i + 1/2)/n - 1/2, ...).
 #include <cmath>
 
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "hwsim/pipeline.hpp"
 #include "hwsim/replay.hpp"
 

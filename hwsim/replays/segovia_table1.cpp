@@ -17,7 +17,7 @@
 // texel copy costs 1.
 #include <cmath>
 
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "hwsim/pipeline.hpp"
 #include "hwsim/replay.hpp"
 

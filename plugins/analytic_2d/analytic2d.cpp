@@ -1,4 +1,4 @@
-// analytic.2d — analytic test images with exact references (core/analytic2d.hpp).
+// analytic.2d — analytic test images with exact references (core/sampling/analytic2d.hpp).
 //
 // Renders a 2D scene through the image-plane sampler every camera-ray
 // technique uses (core/sampling/image_plane.hpp): supersampling with any
@@ -11,8 +11,8 @@
 // Inputs: builtin:zoneplate, builtin:grating, builtin:checker, builtin:siemens, builtin:lines,
 // builtin:disc (or any input with --technique analytic.2d --set scene=NAME).
 // Counters: image.samples (point evaluations).
-#include "core/analytic2d.hpp"
-#include "core/pixel_loop.hpp"
+#include "core/sampling/analytic2d.hpp"
+#include "core/sampling/pixel_loop.hpp"
 #include "core/sampling/image_plane.hpp"
 #include "plugins/technique.hpp"
 

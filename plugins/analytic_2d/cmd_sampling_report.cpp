@@ -3,7 +3,7 @@
 // The error and aliasing table: every pattern family at every sample count
 // renders the analytic scenes (analytic.2d), and each image is compared with
 // the exact reference: RMSE, and the coherent-aliasing ratio of its error
-// image (core/image_spectrum.hpp: the strongest spectral peak away from DC
+// image (core/image/image_spectrum.hpp: the strongest spectral peak away from DC
 // over the mean power; noise scores about ln(W H), aliasing far more).
 // A third figure, the RMSE of the error blurred by a Gaussian of sigma 2
 // pixels, is the error a viewer sees from a distance: noise averages away
@@ -15,11 +15,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_spectrum.hpp"
-#include "plugins/command.hpp"
-#include "plugins/render_job.hpp"
+#include "core/base/atomic_file.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_spectrum.hpp"
+#include "plugins/host/command.hpp"
+#include "plugins/host/render_job.hpp"
 
 namespace weft {
 

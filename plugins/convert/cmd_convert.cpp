@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/raw_volume.hpp"
-#include "plugins/command.hpp"
+#include "core/base/atomic_file.hpp"
+#include "core/base/error.hpp"
+#include "core/volume/raw_volume.hpp"
+#include "plugins/host/command.hpp"
 
 namespace weft {
 

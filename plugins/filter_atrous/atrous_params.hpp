@@ -3,8 +3,8 @@
 // `weft filter atrous` and the techniques that filter with it.
 #include <vector>
 
-#include "core/atrous.hpp"
-#include "core/params.hpp"
+#include "core/screen/atrous.hpp"
+#include "core/base/params.hpp"
 
 namespace weft {
 

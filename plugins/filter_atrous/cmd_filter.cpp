@@ -1,5 +1,5 @@
 // weft filter atrous IN.exr -o OUT.exr [--set key=value]...: the
-// edge-avoiding A-Trous filter (core/atrous.hpp) applied to one RGB layer of
+// edge-avoiding A-Trous filter (core/screen/atrous.hpp) applied to one RGB layer of
 // an EXR, guided by the normal and position layers stored beside it. Every
 // other channel and the input's metadata are kept; the filter's parameters
 // are added as weft:filter:atrous:<key>.
@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <map>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "plugins/command.hpp"
-#include "plugins/chain.hpp"
+#include "core/base/atomic_file.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_io.hpp"
+#include "plugins/host/command.hpp"
+#include "plugins/host/chain.hpp"
 #include "plugins/filter_atrous/atrous_params.hpp"
 
 namespace weft {

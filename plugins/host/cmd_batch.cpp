@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "core/error.hpp"
-#include "core/frames.hpp"
-#include "plugins/command.hpp"
-#include "plugins/render_job.hpp"
+#include "core/base/error.hpp"
+#include "core/base/frames.hpp"
+#include "plugins/host/command.hpp"
+#include "plugins/host/render_job.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

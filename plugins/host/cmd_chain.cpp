@@ -1,16 +1,16 @@
-// Chain steps (plugins/chain.hpp) that act on the image an earlier step left:
+// Chain steps (plugins/host/chain.hpp) that act on the image an earlier step left:
 //   exposure STOPS          scale R, G, B by 2^STOPS (scene-linear; alpha and AOVs kept)
-//   colorconvert FROM TO    OpenColorIO colour-space conversion of R, G, B (core/color.hpp)
+//   colorconvert FROM TO    OpenColorIO colour-space conversion of R, G, B (core/image/color.hpp)
 //   preview FILE            write a display-referred PNG/JPEG/TIFF through OpenColorIO
 //   write FILE.exr          write the image as EXR with the render's metadata and the steps applied
 // (`atrous`, the A-Trous filter step, lives with the filter: plugins/filter_atrous.)
 #include <cmath>
 
-#include "core/atomic_file.hpp"
-#include "core/color.hpp"
-#include "core/error.hpp"
-#include "plugins/command.hpp"
-#include "plugins/chain.hpp"
+#include "core/base/atomic_file.hpp"
+#include "core/image/color.hpp"
+#include "core/base/error.hpp"
+#include "plugins/host/command.hpp"
+#include "plugins/host/chain.hpp"
 
 namespace weft {
 

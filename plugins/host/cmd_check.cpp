@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "plugins/command.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_io.hpp"
+#include "plugins/host/command.hpp"
 
 namespace weft {
 

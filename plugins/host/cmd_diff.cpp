@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/image_compare.hpp"
-#include "core/image_io.hpp"
-#include "plugins/command.hpp"
+#include "core/image/image_compare.hpp"
+#include "core/image/image_io.hpp"
+#include "plugins/host/command.hpp"
 
 namespace weft {
 

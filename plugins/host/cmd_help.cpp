@@ -2,7 +2,7 @@
 // the same table that validates its parameters.
 #include <cstdio>
 
-#include "plugins/command.hpp"
+#include "plugins/host/command.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

@@ -4,9 +4,9 @@
 // farm task can name its frame's tiles by pattern.
 #include <optional>
 
-#include "core/atomic_file.hpp"
-#include "core/frames.hpp"
-#include "plugins/command.hpp"
+#include "core/base/atomic_file.hpp"
+#include "core/base/frames.hpp"
+#include "plugins/host/command.hpp"
 #include "plugins/host/tile_merge.hpp"
 
 namespace weft {

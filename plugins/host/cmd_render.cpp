@@ -1,10 +1,10 @@
 // weft render INPUT -o OUT.exr [options]: one frame, a frame range
 // (--frames, names with # or @) or one tile of a frame (--tile i/n).
 // Without -o the image goes to chained steps (see chain.hpp).
-#include "core/frames.hpp"
-#include "plugins/command.hpp"
-#include "plugins/chain.hpp"
-#include "plugins/render_job.hpp"
+#include "core/base/frames.hpp"
+#include "plugins/host/command.hpp"
+#include "plugins/host/chain.hpp"
+#include "plugins/host/render_job.hpp"
 
 namespace weft {
 

@@ -1,13 +1,13 @@
 // weft: the command-line host. Sub-commands register themselves (see
-// plugins/command.hpp); errors become one line on stderr and exit status 1.
+// plugins/host/command.hpp); errors become one line on stderr and exit status 1.
 #include <openvdb/Exceptions.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
 
-#include "plugins/command.hpp"
-#include "plugins/chain.hpp"
+#include "plugins/host/command.hpp"
+#include "plugins/host/chain.hpp"
 #include "plugins/plugin_api.hpp"
 
 namespace {

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <map>
 
-#include "core/error.hpp"
-#include "core/frames.hpp"
-#include "plugins/render_job.hpp"
+#include "core/base/error.hpp"
+#include "core/base/frames.hpp"
+#include "plugins/host/render_job.hpp"
 
 namespace weft {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image.hpp"
-#include "core/image_io.hpp"
+#include "core/image/image.hpp"
+#include "core/image/image_io.hpp"
 
 namespace weft {
 

@@ -7,11 +7,11 @@
 #include <fstream>
 #include <map>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
+#include "core/base/atomic_file.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_io.hpp"
 #include "hwsim/replay.hpp"
-#include "plugins/command.hpp"
+#include "plugins/host/command.hpp"
 
 namespace weft {
 

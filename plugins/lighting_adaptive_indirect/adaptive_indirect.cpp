@@ -8,7 +8,7 @@
 //   uniform          spp samples at every surface pixel, no filter
 //   uniform_atrous   the same samples, A-Trous filtered
 //   adaptive_atrous  the budget apportioned by geometric importance
-//                    (core/sample_budget.hpp: W_p over a `window`, at least
+//                    (core/screen/sample_budget.hpp: W_p over a `window`, at least
 //                    max(`min_samples`, floor(`min_fraction` spp)) per
 //                    pixel), A-Trous filtered
 // All three trace exactly the same number of indirect samples. With
@@ -34,10 +34,10 @@
 
 #include <cmath>
 
-#include "core/brdf.hpp"
-#include "core/delta_lights.hpp"
-#include "core/mesh_accel.hpp"
-#include "core/sample_budget.hpp"
+#include "core/lighting/brdf.hpp"
+#include "core/lighting/delta_lights.hpp"
+#include "core/mesh/mesh_accel.hpp"
+#include "core/screen/sample_budget.hpp"
 #include "plugins/filter_atrous/atrous_params.hpp"
 #include "plugins/lighting_adaptive_indirect/indirect_estimator.hpp"
 #include "plugins/technique.hpp"

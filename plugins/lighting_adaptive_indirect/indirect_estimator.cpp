@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <limits>
 
-#include "core/brdf.hpp"
-#include "core/delta_lights.hpp"
-#include "core/direct_light.hpp"
-#include "core/mesh_accel.hpp"
+#include "core/lighting/brdf.hpp"
+#include "core/lighting/delta_lights.hpp"
+#include "core/lighting/direct_light.hpp"
+#include "core/mesh/mesh_accel.hpp"
 
 namespace weft {
 

@@ -10,8 +10,8 @@
 // sample); a diffuse surface reflects kd / pi * E of it.
 #include <cstdint>
 
-#include "core/gbuffer.hpp"
-#include "core/sampling.hpp"
+#include "core/screen/gbuffer.hpp"
+#include "core/sampling/pixel_sampler.hpp"
 
 namespace weft {
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/counters.hpp"
-#include "core/interleave.hpp"
+#include "core/base/counters.hpp"
+#include "core/screen/interleave.hpp"
 #include "plugins/lighting_vpl_deferred/vpl.hpp"
 
 namespace weft {

@@ -4,11 +4,11 @@
 
 #include <limits>
 
-#include "core/delta_lights.hpp"
-#include "core/emitters.hpp"
-#include "core/mesh_accel.hpp"
-#include "core/rng.hpp"
-#include "core/sampling.hpp"
+#include "core/lighting/delta_lights.hpp"
+#include "core/lighting/emitters.hpp"
+#include "core/mesh/mesh_accel.hpp"
+#include "core/base/rng.hpp"
+#include "core/sampling/pixel_sampler.hpp"
 
 namespace weft {
 

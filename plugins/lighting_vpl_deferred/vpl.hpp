@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/brdf.hpp"
-#include "core/gbuffer.hpp"
-#include "core/scene.hpp"
+#include "core/lighting/brdf.hpp"
+#include "core/screen/gbuffer.hpp"
+#include "core/scene/scene.hpp"
 
 namespace weft {
 

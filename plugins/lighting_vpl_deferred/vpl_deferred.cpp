@@ -5,7 +5,7 @@
 //   VG    VPL generation: `vpls` light paths, one bounce (vpl.hpp)
 //   BC    G-buffer creation with Embree ray streams (core/gbuffer)
 //   BS    G-buffer split into n x m sub-buffers (`split`: one_pass | two_pass
-//         with `block` p x q blocks; core/interleave.hpp)
+//         with `block` p x q blocks; core/screen/interleave.hpp)
 //   SSM / SNSM  shading of each sub-buffer with its own VPL subset, with
 //         Embree visibility per VPL (`visibility=true`) or without
 //   BG    gathering the light buffer back
@@ -23,10 +23,10 @@
 // fragments.gbuffer, fragments.shaded (texel x VPL evaluations).
 #include <cstdio>
 
-#include "core/delta_lights.hpp"
-#include "core/discontinuity.hpp"
-#include "core/interleave.hpp"
-#include "core/mesh_accel.hpp"
+#include "core/lighting/delta_lights.hpp"
+#include "core/screen/discontinuity.hpp"
+#include "core/screen/interleave.hpp"
+#include "core/mesh/mesh_accel.hpp"
 #include "plugins/lighting_vpl_deferred/shading.hpp"
 #include "plugins/technique.hpp"
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "tests/support/mesh_fixtures.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"

@@ -1,7 +1,7 @@
 // mesh.pathtrace — unbiased path tracing of meshes, the reference the VPL
 // technique is measured against.
 //
-// Camera paths bounce on Lambertian + Phong surfaces (core/brdf.hpp). At every
+// Camera paths bounce on Lambertian + Phong surfaces (core/lighting/brdf.hpp). At every
 // vertex, next-event estimation samples one point on the emitters (by power)
 // and every point/directional light, with a shadow ray each; emission is
 // counted only where a camera ray sees an emitter directly, so no light is
@@ -23,13 +23,13 @@
 #include <algorithm>
 #include <limits>
 
-#include "core/brdf.hpp"
-#include "core/delta_lights.hpp"
-#include "core/direct_light.hpp"
-#include "core/emitters.hpp"
-#include "core/mesh_accel.hpp"
-#include "core/pixel_loop.hpp"
-#include "core/sampling.hpp"
+#include "core/lighting/brdf.hpp"
+#include "core/lighting/delta_lights.hpp"
+#include "core/lighting/direct_light.hpp"
+#include "core/lighting/emitters.hpp"
+#include "core/mesh/mesh_accel.hpp"
+#include "core/sampling/pixel_loop.hpp"
+#include "core/sampling/pixel_sampler.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

@@ -4,9 +4,9 @@
 // and thread-count independence.
 #include <gtest/gtest.h>
 
-#include "core/brdf.hpp"
-#include "core/image_compare.hpp"
-#include "core/rng.hpp"
+#include "core/lighting/brdf.hpp"
+#include "core/image/image_compare.hpp"
+#include "core/base/rng.hpp"
 #include "tests/support/mesh_fixtures.hpp"
 #include "tests/support/render_helpers.hpp"
 

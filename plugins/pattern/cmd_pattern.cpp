@@ -14,13 +14,13 @@
 #include <cstdio>
 #include <fstream>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
+#include "core/base/atomic_file.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_io.hpp"
 #include "core/sampling/generators.hpp"
 #include "core/sampling/pattern_analysis.hpp"
 #include "core/sampling/pattern_set.hpp"
-#include "plugins/command.hpp"
+#include "plugins/host/command.hpp"
 
 namespace weft {
 

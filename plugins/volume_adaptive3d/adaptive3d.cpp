@@ -2,7 +2,7 @@
 // (Kraus, Strengert, Klein, Ertl 2007).
 //
 // An oracle (oracles/) gives a sampling distance d everywhere. Slices are
-// processed front to back (core/slices.hpp); slice i starts at pyramid level
+// processed front to back (core/volume/slices.hpp); slice i starts at pyramid level
 // l_slice = min(trailing zeros of i, lmax) and walks down to level 0
 // (Figure 4). On each level a pixel
 //   - is synthesised from the coarser level (Figures 5-7: bilinear weights
@@ -27,11 +27,11 @@
 #include <algorithm>
 #include <bit>
 
-#include "core/progress.hpp"
-#include "core/segment_tables.hpp"
-#include "core/slices.hpp"
+#include "core/base/progress.hpp"
+#include "core/volume/segment_tables.hpp"
+#include "core/volume/slices.hpp"
 #include "oracles/oracle.hpp"
-#include "plugins/slice_renderer.hpp"
+#include "core/volume/slice_renderer.hpp"
 #include "plugins/technique.hpp"
 #include "plugins/volume_adaptive3d/pyramid.hpp"
 

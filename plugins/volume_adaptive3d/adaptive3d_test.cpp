@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <bit>
 
-#include "core/rng.hpp"
+#include "core/base/rng.hpp"
 #include "tests/support/test_support.hpp"
 #include "oracles/oracle.hpp"
 #include "plugins/volume_adaptive3d/pyramid.hpp"

@@ -8,12 +8,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/counters.hpp"
-#include "core/image.hpp"
-#include "core/segment_tables.hpp"
-#include "core/slices.hpp"
+#include "core/base/counters.hpp"
+#include "core/image/image.hpp"
+#include "core/volume/segment_tables.hpp"
+#include "core/volume/slices.hpp"
 #include "oracles/oracle.hpp"
-#include "plugins/slice_renderer.hpp"
+#include "core/volume/slice_renderer.hpp"
 
 namespace weft {
 

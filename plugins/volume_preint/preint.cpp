@@ -1,7 +1,7 @@
 // volume.preint — fixed-rate slice renderer with pre-integrated segments.
 //
 // Every ray is sampled on every slice (shells t_i = tNear + i * spacing, see
-// core/slices.hpp) and each segment between neighbouring slices is
+// core/volume/slices.hpp) and each segment between neighbouring slices is
 // composited from a pre-integration table lookup (s_front, s_back, one
 // slice). This is the "tex.-based" column of Kraus et al. 2007, Tables 2-3:
 // the reference volume.adaptive3d is measured against at the same spacing.
@@ -16,13 +16,13 @@
 // Counters: rays.camera, slices, volume.samples (one trilinear lookup per
 // slice inside the volume: the back sample of one segment is the front
 // sample of the next), composite.ops.
-#include "core/pixel_loop.hpp"
-#include "core/rng.hpp"
+#include "core/sampling/pixel_loop.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/pattern_set.hpp"
-#include "core/volume_ray.hpp"
-#include "core/segment_tables.hpp"
-#include "core/slices.hpp"
-#include "plugins/slice_renderer.hpp"
+#include "core/volume/volume_ray.hpp"
+#include "core/volume/segment_tables.hpp"
+#include "core/volume/slices.hpp"
+#include "core/volume/slice_renderer.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

@@ -24,10 +24,10 @@
 
 #include <optional>
 
-#include "core/pixel_loop.hpp"
-#include "core/rng.hpp"
+#include "core/sampling/pixel_loop.hpp"
+#include "core/base/rng.hpp"
 #include "core/sampling/image_plane.hpp"
-#include "core/volume_ray.hpp"
+#include "core/volume/volume_ray.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

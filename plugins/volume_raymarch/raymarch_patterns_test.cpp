@@ -3,8 +3,8 @@
 // Heidrich 4.3) in volume.raymarch and volume.preint.
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "core/image_spectrum.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_spectrum.hpp"
 #include "tests/support/render_helpers.hpp"
 
 using namespace weft;

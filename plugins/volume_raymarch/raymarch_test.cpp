@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"
 

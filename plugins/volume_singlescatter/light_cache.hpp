@@ -11,7 +11,7 @@
 // density), which divides its cost by the cube of the coarsening.
 #include <openvdb/openvdb.h>
 
-#include "core/volume.hpp"
+#include "core/volume/volume.hpp"
 #include "plugins/volume_singlescatter/scatter_params.hpp"
 
 namespace weft {

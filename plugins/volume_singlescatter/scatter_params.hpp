@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/params.hpp"
-#include "core/scene.hpp"
+#include "core/scene/camera.hpp"
+#include "core/base/params.hpp"
+#include "core/scene/scene.hpp"
 
 namespace weft {
 

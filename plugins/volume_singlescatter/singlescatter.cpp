@@ -25,10 +25,10 @@
 #include <cmath>
 #include <optional>
 
-#include "core/pixel_loop.hpp"
-#include "core/rng.hpp"
-#include "core/transmittance.hpp"
-#include "core/volume_ray.hpp"
+#include "core/sampling/pixel_loop.hpp"
+#include "core/base/rng.hpp"
+#include "core/volume/transmittance.hpp"
+#include "core/volume/volume_ray.hpp"
 #include "plugins/technique.hpp"
 #include "plugins/volume_singlescatter/light_cache.hpp"
 #include "plugins/volume_singlescatter/scatter_params.hpp"

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "core/image_io.hpp"
-#include "core/volume.hpp"
+#include "core/image/image_io.hpp"
+#include "core/volume/volume.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/vdb_fixtures.hpp"

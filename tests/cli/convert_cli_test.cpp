@@ -10,7 +10,7 @@
 #include <limits>
 #include <set>
 
-#include "core/volume.hpp"
+#include "core/volume/volume.hpp"
 #include "tests/support/raw_samples.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -3,8 +3,8 @@
 // without writing a file.
 #include <gtest/gtest.h>
 
-#include "core/image_io.hpp"
-#include "core/rng.hpp"
+#include "core/image/image_io.hpp"
+#include "core/base/rng.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft::test;

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/image_io.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/vdb_fixtures.hpp"
 

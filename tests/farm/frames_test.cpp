@@ -1,9 +1,9 @@
-// Frame ranges, frame-numbered names and tile bands (core/frames.hpp).
-#include "core/frames.hpp"
+// Frame ranges, frame-numbered names and tile bands (core/base/frames.hpp).
+#include "core/base/frames.hpp"
 
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 
 using weft::expandFrameName;
 using weft::parseFrameRange;

@@ -7,8 +7,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "core/camera.hpp"
-#include "core/image_io.hpp"
+#include "core/scene/camera.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft::test;

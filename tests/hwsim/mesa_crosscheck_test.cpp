@@ -11,7 +11,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "hwsim/pipeline.hpp"
 #include "tests/hwsim/crosscheck_cases.hpp"
 

@@ -3,7 +3,7 @@
 // that change only what they should (never which samples pass or the image).
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
+#include "core/base/error.hpp"
 #include "hwsim/replay.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <memory>
 
-#include "core/scene.hpp"
+#include "core/scene/scene.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft::test {

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/raw_volume.hpp"
+#include "core/volume/raw_volume.hpp"
 
 namespace weft::test {
 

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image_compare.hpp"
-#include "plugins/render_job.hpp"
+#include "core/image/image_compare.hpp"
+#include "plugins/host/render_job.hpp"
 
 namespace weft::test {
 

@@ -2,7 +2,7 @@
 
 #include <openvdb/io/File.h>
 
-#include "core/volume.hpp"
+#include "core/volume/volume.hpp"
 
 namespace weft::test {
 

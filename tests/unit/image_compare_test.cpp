@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/image_compare.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_compare.hpp"
 
 using namespace weft;
 

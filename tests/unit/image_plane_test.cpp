@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/image_spectrum.hpp"
+#include "core/base/error.hpp"
+#include "core/image/image_spectrum.hpp"
 #include "core/sampling/image_plane.hpp"
-#include "plugins/render_job.hpp"
+#include "plugins/host/render_job.hpp"
 
 using namespace weft;
 

@@ -2,9 +2,9 @@
 // and the values a scene sets reaching the Scene.
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "core/json_doc.hpp"
-#include "core/scene.hpp"
+#include "core/base/error.hpp"
+#include "core/base/json_doc.hpp"
+#include "core/scene/scene.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft;

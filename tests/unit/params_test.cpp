@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "core/error.hpp"
-#include "core/params.hpp"
+#include "core/base/error.hpp"
+#include "core/base/params.hpp"
 
 using namespace weft;
 

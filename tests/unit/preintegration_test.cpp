@@ -9,9 +9,9 @@
 #include <random>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/preintegration.hpp"
-#include "core/volume_ray.hpp"
+#include "core/base/error.hpp"
+#include "core/volume/preintegration.hpp"
+#include "core/volume/volume_ray.hpp"
 
 using namespace weft;
 

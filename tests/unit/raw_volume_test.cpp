@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "core/error.hpp"
-#include "core/raw_volume.hpp"
+#include "core/base/error.hpp"
+#include "core/volume/raw_volume.hpp"
 #include "tests/support/raw_samples.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -1,0 +1,169 @@
+#include "core/base/json_doc.hpp"
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <vector>
+
+#include "core/base/error.hpp"
+
+namespace weft {
+
+namespace {
+
+// An input iterator over the text that publishes how far the parser has read,
+// so the SAX handler below knows where each event's token ended.
+struct CountingIterator {
+    using iterator_category = std::input_iterator_tag;
+    using value_type = char;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const char*;
+    using reference = const char&;
+
+    const char* p;
+    const char* base;
+    std::size_t* consumed;
+
+    reference operator*() const { return *p; }
+    CountingIterator& operator++() {
+        ++p;
+        *consumed = static_cast<std::size_t>(p - base);
+        return *this;
+    }
+    CountingIterator operator++(int) { auto old = *this; ++*this; return old; }
+    bool operator==(const CountingIterator& o) const { return p == o.p; }
+    bool operator!=(const CountingIterator& o) const { return p != o.p; }
+};
+
+std::string escapePointerToken(const std::string& key) {
+    std::string out;
+    for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+    return out;
+}
+
+}  // namespace
+
+// Builds the DOM like nlohmann's own SAX DOM parser, and records for each
+// value the position of its first character.
+class PositionedSax {
+public:
+    using json = nlohmann::json;
+    PositionedSax(const std::string& text, JsonDoc& doc, const std::size_t& consumed)
+        : text_(text), doc_(doc), consumed_(consumed) {}
+
+    bool null() { return value(nullptr); }
+    bool boolean(bool v) { return value(v); }
+    bool number_integer(json::number_integer_t v) { return value(v); }
+    bool number_unsigned(json::number_unsigned_t v) { return value(v); }
+    bool number_float(json::number_float_t v, const json::string_t&) { return value(v); }
+    bool string(json::string_t& v) { return value(v); }
+    bool binary(json::binary_t& v) { return value(json(v)); }
+    bool start_object(std::size_t) { return open(json::object()); }
+    bool start_array(std::size_t) { return open(json::array()); }
+    bool end_object() { return close(); }
+    bool end_array() { return close(); }
+    bool key(json::string_t& k) {
+        const std::size_t start = tokenStart();
+        doc_.positions_[pointers_.back() + "/" + escapePointerToken(k) + "#key"] = toPos(start);
+        key_ = k;
+        lastEnd_ = consumed_;
+        return true;
+    }
+    bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) {
+        const TextPos pos = toPos(position > 0 ? position - 1 : 0);
+        std::string msg = ex.what();
+        // nlohmann prefixes "[json.exception.parse_error.101] parse error at line 1, column 2: "
+        if (auto colon = msg.find(": "); colon != std::string::npos) msg = msg.substr(colon + 2);
+        throw Error(doc_.file_ + ":" + std::to_string(pos.line) + ":" + std::to_string(pos.column) +
+                    ": JSON syntax error: " + msg);
+    }
+
+private:
+    // First character of the current token: skip the separators after the
+    // previous event's end.
+    std::size_t tokenStart() const {
+        std::size_t i = lastEnd_;
+        while (i < text_.size() && (std::isspace(static_cast<unsigned char>(text_[i])) || text_[i] == ':' || text_[i] == ','))
+            ++i;
+        return i;
+    }
+    TextPos toPos(std::size_t offset) const {
+        TextPos pos;
+        for (std::size_t i = 0; i < offset && i < text_.size(); ++i) {
+            if (text_[i] == '\n') ++pos.line, pos.column = 1;
+            else ++pos.column;
+        }
+        return pos;
+    }
+    std::string childPointer() const {
+        if (stack_.empty()) return "";
+        json& parent = *stack_.back();
+        return pointers_.back() + "/" + (parent.is_array() ? std::to_string(parent.size()) : escapePointerToken(key_));
+    }
+    json* insert(json v) {
+        if (stack_.empty()) { doc_.root_ = std::move(v); return &doc_.root_; }
+        json& parent = *stack_.back();
+        if (parent.is_array()) { parent.push_back(std::move(v)); return &parent.back(); }
+        parent[key_] = std::move(v);
+        return &parent[key_];
+    }
+    bool value(json v) {
+        doc_.positions_[childPointer()] = toPos(tokenStart());
+        insert(std::move(v));
+        lastEnd_ = consumed_;
+        return true;
+    }
+    bool open(json container) {
+        const std::string pointer = childPointer();
+        doc_.positions_[pointer] = toPos(tokenStart());
+        stack_.push_back(insert(std::move(container)));
+        pointers_.push_back(pointer);
+        lastEnd_ = consumed_;
+        return true;
+    }
+    bool close() {
+        stack_.pop_back();
+        pointers_.pop_back();
+        lastEnd_ = consumed_;
+        return true;
+    }
+
+    const std::string& text_;
+    JsonDoc& doc_;
+    const std::size_t& consumed_;
+    std::size_t lastEnd_ = 0;
+    std::vector<json*> stack_;
+    std::vector<std::string> pointers_;
+    std::string key_;
+};
+
+JsonDoc JsonDoc::parse(const std::string& text, const std::string& fileName) {
+    JsonDoc doc;
+    doc.file_ = fileName;
+    std::size_t consumed = 0;
+    PositionedSax sax(text, doc, consumed);
+    CountingIterator first{text.data(), text.data(), &consumed};
+    CountingIterator last{text.data() + text.size(), text.data(), &consumed};
+    nlohmann::json::sax_parse(first, last, &sax);
+    return doc;
+}
+
+JsonDoc JsonDoc::load(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("scene '" + path + "': cannot open file");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return parse(buffer.str(), path);
+}
+
+TextPos JsonDoc::position(const std::string& pointer) const {
+    auto it = positions_.find(pointer);
+    return it == positions_.end() ? TextPos{} : it->second;
+}
+
+std::string JsonDoc::where(const std::string& pointer) const {
+    const TextPos pos = position(pointer);
+    return file_ + ":" + std::to_string(pos.line) + ":" + std::to_string(pos.column);
+}
+
+}  // namespace weft

@@ -1,0 +1,20 @@
+#pragma once
+// Render outputs are written with OpenEXR itself: every render writes one,
+// and OpenEXR starts in a moment where OpenImageIO (previews, reading any
+// format: core/image/image_codec.hpp) would load some 260 libraries first.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image/image.hpp"
+
+namespace weft {
+
+// Writes all channels as 32-bit float, zip-compressed, with string
+// attributes, the data window at (x, y) inside a fullWidth x fullHeight
+// display window. No time stamp: same pixels and attributes, same bytes.
+void writeExrFile(const std::string& path, const Image& image,
+                  const std::vector<std::pair<std::string, std::string>>& attributes, int x, int y, int fullWidth,
+                  int fullHeight);
+
+}  // namespace weft

@@ -1,0 +1,40 @@
+#pragma once
+// Image files (OpenImageIO, through core/image/image_codec.hpp): multi-channel EXR with render metadata,
+// and display-referred previews (PNG/JPEG/TIFF) through OpenColorIO.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image/image.hpp"
+
+namespace weft {
+
+// Ordered string attributes written into the file header ("weft:technique"...).
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+// Where an image lies in a larger frame (a tile of it): the origin of its
+// pixels (EXR data window) and the frame's size (display window).
+struct ImageWindow {
+    int x = 0, y = 0;
+    int fullWidth = 0, fullHeight = 0;
+};
+
+// Writes all channels as a 32-bit float, zip-compressed EXR, atomically.
+// No time stamps are written: same pixels and metadata give the same bytes.
+void writeExr(const Image& image, const std::string& path, const Metadata& metadata);
+// The same for a part of a frame: the EXR's data window starts at
+// (window.x, window.y) inside a fullWidth x fullHeight display window.
+void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window);
+
+// Reads any image OpenImageIO understands, as float; metadata receives the
+// string attributes and window the data and display windows, when given.
+Image readImage(const std::string& path, Metadata* metadata = nullptr, ImageWindow* window = nullptr);
+
+// Writes an 8-bit display-referred preview (format from the extension),
+// composited over black, through the OCIO display transform; atomically.
+void writePreview(const Image& image, const std::string& path);
+
+// Whether the extension names a preview format (not EXR).
+bool isPreviewPath(const std::string& path);
+
+}  // namespace weft

@@ -1,0 +1,139 @@
+// Mesh files: OBJ (+MTL, `t crease`/`t corner` tags) through tinyobjloader,
+// which keeps the file's vertex indices so subdivision sees the real
+// topology; PLY through Assimp. Both are checked after reading: indices in
+// range, at least one face, finite positions.
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/base/error.hpp"
+#include "core/mesh/mesh.hpp"
+
+namespace fs = std::filesystem;
+
+namespace weft {
+
+namespace {
+
+// Loader messages may span lines; weft errors are one line.
+std::string oneLine(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    return text;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error("mesh '" + path + "': " + what); }
+
+Material fromMtl(const tinyobj::material_t& m) {
+    Material out;
+    out.name = m.name;
+    out.diffuse = Vec3f(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+    out.glossy = Vec3f(m.specular[0], m.specular[1], m.specular[2]);
+    out.exponent = std::max(0.0f, float(m.shininess));
+    out.emission = Vec3f(m.emission[0], m.emission[1], m.emission[2]);
+    return out;
+}
+
+void readTags(const tinyobj::mesh_t& mesh, PolyMesh& out) {
+    for (const tinyobj::tag_t& tag : mesh.tags) {
+        if (tag.name == "crease") {
+            for (std::size_t e = 0; e + 1 < tag.intValues.size(); e += 2)
+                out.creases.push_back({tag.intValues[e], tag.intValues[e + 1], tag.floatValues.empty() ? 10.0f : float(tag.floatValues[0])});
+        } else if (tag.name == "corner") {
+            for (std::size_t i = 0; i < tag.intValues.size(); ++i)
+                out.corners.emplace_back(tag.intValues[i], i < tag.floatValues.size() ? float(tag.floatValues[i]) : 10.0f);
+        }
+    }
+}
+
+PolyMesh readObj(const std::string& path) {
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = false;
+    config.vertex_color = false;
+    config.mtl_search_path = fs::path(path).parent_path().string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(path, config)) fail(path, oneLine(reader.Error().empty() ? "cannot be parsed as OBJ" : reader.Error()));
+    if (reader.Warning().find("not found") != std::string::npos) fail(path, oneLine(reader.Warning()));
+    PolyMesh out;
+    const auto& v = reader.GetAttrib().vertices;
+    for (std::size_t i = 0; i + 2 < v.size(); i += 3) out.positions.emplace_back(v[i], v[i + 1], v[i + 2]);
+    for (const tinyobj::material_t& m : reader.GetMaterials()) out.materials.push_back(fromMtl(m));
+    const int fallback = int(out.materials.size());
+    bool usesFallback = false;
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        std::size_t first = 0;
+        for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+            const int n = shape.mesh.num_face_vertices[f];
+            for (int k = 0; k < n; ++k) out.faceIndices.push_back(shape.mesh.indices[first + k].vertex_index);
+            const int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+            usesFallback |= mat < 0;
+            out.faceMaterial.push_back(mat < 0 ? fallback : mat);
+            out.faceSizes.push_back(n);
+            first += std::size_t(n);
+        }
+        readTags(shape.mesh, out);
+    }
+    if (usesFallback) out.materials.emplace_back();
+    return out;
+}
+
+PolyMesh readPly(const std::string& path) {
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
+    if (!scene) fail(path, oneLine(importer.GetErrorString()));
+    PolyMesh out;
+    out.materials.emplace_back();
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+        const aiMesh& mesh = *scene->mMeshes[m];
+        const int base = int(out.positions.size());
+        for (unsigned i = 0; i < mesh.mNumVertices; ++i)
+            out.positions.emplace_back(mesh.mVertices[i].x, mesh.mVertices[i].y, mesh.mVertices[i].z);
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices < 3) continue;  // points and lines carry no surface
+            for (unsigned k = 0; k < face.mNumIndices; ++k) out.faceIndices.push_back(base + int(face.mIndices[k]));
+            out.faceSizes.push_back(int(face.mNumIndices));
+            out.faceMaterial.push_back(0);
+        }
+    }
+    return out;
+}
+
+void validate(const PolyMesh& mesh, const std::string& path) {
+    if (mesh.faceSizes.empty()) fail(path, "has no faces");
+    for (const Vec3f& p : mesh.positions)
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) fail(path, "has a vertex position that is not finite");
+    const int n = int(mesh.positions.size());
+    for (int i : mesh.faceIndices)
+        if (i < 0 || i >= n) fail(path, "a face refers to vertex " + std::to_string(i) + " but the file has " + std::to_string(n) + " vertices");
+    for (const Crease& c : mesh.creases)
+        if (c.v0 < 0 || c.v0 >= n || c.v1 < 0 || c.v1 >= n) fail(path, "a crease refers to a vertex outside the mesh");
+    for (const auto& [v, s] : mesh.corners)
+        if (v < 0 || v >= n) fail(path, "a corner refers to a vertex outside the mesh");
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace
+
+PolyMesh readPolyMesh(const std::string& path) {
+    if (!fs::is_regular_file(path)) fail(path, "no such file");
+    const std::string ext = lowerExtension(path);
+    PolyMesh mesh;
+    if (ext == ".obj") mesh = readObj(path);
+    else if (ext == ".ply") mesh = readPly(path);
+    else fail(path, "unknown mesh format '" + ext + "' (known: .obj|.ply)");
+    validate(mesh, path);
+    return mesh;
+}
+
+}  // namespace weft

@@ -1,0 +1,54 @@
+#include "core/scene/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace weft {
+
+Ray Camera::generate(double px, double py, int width, int height) const {
+    const Vec3d forward = (target - eye).unitSafe();
+    const Vec3d right = forward.cross(up).unitSafe();
+    const Vec3d trueUp = right.cross(forward);
+    const double tanHalf = std::tan(0.5 * fovY * M_PI / 180.0);
+    const double aspect = double(width) / double(height);
+    const double sx = (2.0 * px / width - 1.0) * tanHalf * aspect;
+    const double sy = (1.0 - 2.0 * py / height) * tanHalf;
+    return {eye, (forward + right * sx + trueUp * sy).unitSafe()};
+}
+
+Camera lerpCamera(const Camera& a, const Camera& b, double t) {
+    Camera c;
+    c.eye = a.eye + (b.eye - a.eye) * t;
+    c.target = a.target + (b.target - a.target) * t;
+    c.up = a.up + (b.up - a.up) * t;
+    c.fovY = a.fovY + (b.fovY - a.fovY) * t;
+    return c;
+}
+
+Camera CameraPath::at(double frame) const {
+    if (keys.empty()) return Camera{};
+    if (!(frame > keys.front().first)) return keys.front().second;  // NaN holds the first key too
+    for (std::size_t i = 1; i < keys.size(); ++i)
+        if (frame <= keys[i].first) {
+            const double t = (frame - keys[i - 1].first) / (keys[i].first - keys[i - 1].first);
+            return lerpCamera(keys[i - 1].second, keys[i].second, t);
+        }
+    return keys.back().second;
+}
+
+Camera Camera::framing(const BBoxd& box, double fovY, double aspect) {
+    const Vec3d center = box.getCenter();
+    const Vec3d extent = box.extents() * 0.5;
+    const double tanHalfY = std::tan(0.5 * fovY * M_PI / 180.0);
+    const double tanHalfX = tanHalfY * aspect;
+    // Distance at which the front face's half extents fit both fields of view.
+    const double fitY = extent.y() / tanHalfY, fitX = extent.x() / tanHalfX;
+    const double distance = extent.z() + 1.1 * std::max(fitX, fitY);
+    Camera cam;
+    cam.fovY = fovY;
+    cam.target = center;
+    cam.eye = center + Vec3d(0, 0, std::max(distance, 1e-6));
+    return cam;
+}
+
+}  // namespace weft

@@ -1,0 +1,84 @@
+#pragma once
+// The scene: camera, volumes, lights, and the render settings a scene file
+// may carry (technique, parameters, resolution), which the command line can
+// override. Only what the scene uses is built.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene/camera.hpp"
+#include "core/mesh/mesh.hpp"
+#include "core/volume/volume.hpp"
+
+namespace weft {
+
+enum class LightType { Directional, Point, Environment };
+
+struct Light {
+    LightType type = LightType::Directional;
+    Vec3d direction{0, -1, 0};  // directional: the way light travels
+    Vec3d position{0, 0, 0};    // point
+    Vec3f color{1, 1, 1};
+    double intensity = 1.0;
+};
+
+struct SceneRenderSettings {
+    std::optional<std::string> technique;
+    std::map<std::string, std::string> params;  // key -> value text
+    std::optional<int> width, height, spp;
+    std::optional<std::uint64_t> seed;
+};
+
+class MeshAccel;
+class Emitters;
+struct MeshCache;
+
+struct Scene {
+    std::string source;  // what was loaded: a path or builtin:NAME
+    Camera camera;           // at the frame rendered
+    CameraPath cameraPath;   // keyed cameras; empty when the camera is fixed
+    Shutter shutter;         // instant unless the scene opens it
+    double frame = 0;        // the frame rendered (the first key's without --frames)
+    std::vector<Volume> volumes;
+    std::vector<TriangleMesh> meshes;  // material ids index `materials`
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    SceneRenderSettings render;
+
+    BBoxd worldBox() const;
+    // The camera at shutter time u in [0, 1): `camera` unless it moves.
+    Camera cameraAt(double u) const;
+    // Whether the camera moves while the shutter is open (motion blur).
+    bool cameraMoves() const;
+    // Adds a mesh, moving its materials into the scene's table.
+    void addMesh(TriangleMesh mesh);
+    // The Embree BVH over every mesh and the emissive triangles, built on the
+    // first call (thread-safe). Meshes must not change after that.
+    const MeshAccel& accel() const;
+    const Emitters& emitters() const;
+
+private:
+    mutable std::shared_ptr<MeshCache> meshCache_;
+};
+
+// Loads a scene from a .json file, a bare .obj/.ply mesh (framed like a bare
+// .vdb, lit by its emissive materials or else by a light over the camera), a bare .vdb (framed like vdb_render does,
+// default transfer function over the grid's value range) or builtin:NAME.
+// aspect is width/height of the image, used to frame scenes without a camera;
+// when not given, a scene file's own resolution decides, else 1.
+// gridName picks the grid of a bare .vdb (default: "density", else the first float grid).
+// frame, when given, selects what varies with the frame in a scene file:
+// frame-numbered volume files ("smoke.#.vdb", see core/base/frames.hpp) and a
+// camera keyed by frame ("camera": {"keys": [{"frame": 1, "eye": ...}, ...]}),
+// which, with an open shutter ("camera": {"shutter": [-0.25, 0.25]}), moves
+// within the frame: motion blur whose time samples follow the frame.
+Scene loadScene(const std::string& input, std::optional<double> aspect = std::nullopt, const std::string& gridName = "",
+                std::optional<int> frame = std::nullopt);
+
+// Names of the built-in scenes, "cloud|sphere".
+const char* builtinSceneNames();
+
+}  // namespace weft

@@ -1,0 +1,396 @@
+// Scene files: strict JSON. Every object lists the keys it accepts; an unknown
+// key, a wrong type or a value out of range is an error at file:line:column.
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "core/sampling/analytic2d.hpp"
+#include "core/base/error.hpp"
+#include "core/base/frames.hpp"
+#include "core/base/json_doc.hpp"
+#include "core/base/params.hpp"
+#include "core/scene/scene.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace weft {
+
+namespace {
+
+// Typed, position-aware access to one JSON object of the scene.
+class ObjectReader {
+public:
+    ObjectReader(const JsonDoc& doc, std::string pointer, std::string what, std::set<std::string> keys)
+        : doc_(doc), pointer_(std::move(pointer)), what_(std::move(what)) {
+        const json& node = value();
+        if (!node.is_object()) failAt(pointer_, what_ + " must be an object");
+        for (const auto& item : node.items())
+            if (!keys.count(item.key())) {
+                std::string valid;
+                for (const auto& k : keys) valid += (valid.empty() ? "" : ", ") + k;
+                failAt(pointer_ + "/" + item.key() + "#key", "unknown key '" + item.key() + "' in " + what_ + "; valid keys: " + valid);
+            }
+    }
+    const json& value() const { return doc_.root().at(json::json_pointer(pointer_)); }
+    bool has(const std::string& key) const { return value().contains(key); }
+    std::string child(const std::string& key) const { return pointer_ + "/" + key; }
+
+    [[noreturn]] void failAt(const std::string& pointer, const std::string& msg) const {
+        throw Error(doc_.where(pointer) + ": " + msg);
+    }
+    [[noreturn]] void fail(const std::string& key, const std::string& msg) const { failAt(child(key), msg); }
+
+    double number(const std::string& key, double def, double lo, double hi) const {
+        if (!has(key)) return def;
+        const json& v = value()[key];
+        if (!v.is_number()) fail(key, what_ + "." + key + " must be a number");
+        const double d = v.get<double>();
+        if (!(d >= lo && d <= hi))
+            fail(key, what_ + "." + key + " = " + v.dump() + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
+        return d;
+    }
+    std::string string(const std::string& key, const std::string& def) const {
+        if (!has(key)) return def;
+        const json& v = value()[key];
+        if (!v.is_string()) fail(key, what_ + "." + key + " must be a string");
+        return v.get<std::string>();
+    }
+    Vec3d vec3(const std::string& key, const Vec3d& def) const {
+        if (!has(key)) return def;
+        const json& v = value()[key];
+        if (!v.is_array() || v.size() != 3) fail(key, what_ + "." + key + " must be an array of 3 numbers");
+        Vec3d out;
+        for (int i = 0; i < 3; ++i) {
+            if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) fail(key, what_ + "." + key + " must be an array of 3 finite numbers");
+            out[i] = v[i].get<double>();
+        }
+        return out;
+    }
+    const JsonDoc& doc() const { return doc_; }
+    const std::string& pointer() const { return pointer_; }
+
+private:
+    const JsonDoc& doc_;
+    std::string pointer_;
+    std::string what_;
+};
+
+constexpr double kHuge = 1e30;
+
+Camera readCamera(const ObjectReader& r, const Camera& defaults = Camera{}) {
+    Camera cam;
+    cam.eye = r.vec3("eye", defaults.eye);
+    cam.target = r.vec3("target", defaults.target);
+    cam.up = r.vec3("up", defaults.up);
+    cam.fovY = r.number("fov", defaults.fovY, 0.01, 179.0);
+    if ((cam.target - cam.eye).length() < 1e-12) r.fail("target", "camera.target must differ from camera.eye");
+    if ((cam.target - cam.eye).cross(cam.up).length() < 1e-12 * (cam.target - cam.eye).length())
+        r.fail("up", "camera.up must not be parallel to the view direction");
+    return cam;
+}
+
+// "camera": {"up": ..., "fov": ..., "keys": [{"frame": F, "eye": ..., "target": ...}, ...]}:
+// a CameraPath; values a key leaves out come from the camera object.
+CameraPath readCameraPath(const ObjectReader& r) {
+    const Camera base = readCamera(r);
+    const json& keys = r.value()["keys"];
+    if (!keys.is_array() || keys.empty()) r.fail("keys", "camera.keys must be a non-empty array of keys");
+    CameraPath path;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        ObjectReader k(r.doc(), r.child("keys/" + std::to_string(i)), "camera key", {"frame", "eye", "target", "up", "fov"});
+        if (!k.has("frame")) k.failAt(k.pointer(), "a camera key needs a 'frame'");
+        const double f = k.number("frame", 0, -1e9, 1e9);
+        if (!path.keys.empty() && f <= path.keys.back().first) k.fail("frame", "camera key frames must increase");
+        path.keys.emplace_back(f, readCamera(k, base));
+    }
+    return path;
+}
+
+// "shutter": [open, close] in frames relative to the frame, open <= close.
+Shutter readShutter(const ObjectReader& r) {
+    const json& v = r.value()["shutter"];
+    const auto finite = [](const json& x) { return x.is_number() && std::abs(x.get<double>()) <= 100.0; };
+    if (!v.is_array() || v.size() != 2 || !finite(v[0]) || !finite(v[1]) || v[0].get<double>() > v[1].get<double>())
+        r.fail("shutter", "camera.shutter must be [open, close] in frames relative to the frame, open <= close, within +-100");
+    return {v[0].get<double>(), v[1].get<double>()};
+}
+
+void readSceneCamera(const ObjectReader& cam, std::optional<int> frame, Scene& scene) {
+    if (cam.has("shutter")) scene.shutter = readShutter(cam);
+    if (!cam.has("keys")) {
+        scene.camera = readCamera(cam);
+        return;
+    }
+    scene.cameraPath = readCameraPath(cam);
+    scene.frame = frame ? double(*frame) : scene.cameraPath.keys.front().first;
+    scene.camera = scene.cameraPath.at(scene.frame);
+}
+
+TransferFunction readTransferFunction(const ObjectReader& r, const Volume& vol) {
+    double lo = std::min(0.0f, vol.valueMin), hi = vol.valueMax > lo ? vol.valueMax : lo + 1.0;
+    if (r.has("range")) {
+        const json& v = r.value()["range"];
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() || !(v[1].get<double>() > v[0].get<double>()))
+            r.fail("range", "transfer_function.range must be [min, max] with max > min");
+        lo = v[0].get<double>(), hi = v[1].get<double>();
+    }
+    if (!r.has("points")) return TransferFunction::defaultFor(lo, hi);
+    const json& pts = r.value()["points"];
+    if (!pts.is_array() || pts.empty()) r.fail("points", "transfer_function.points must be a non-empty array");
+    std::vector<TfPoint> points;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        ObjectReader p(r.doc(), r.child("points") + "/" + std::to_string(i), "transfer_function point", {"s", "color", "extinction"});
+        TfPoint tp;
+        tp.s = p.number("s", 0.0, 0.0, 1.0);
+        const Vec3d c = p.vec3("color", Vec3d(1, 1, 1));
+        if (c.x() < 0 || c.y() < 0 || c.z() < 0) p.fail("color", "transfer_function colour must not be negative");
+        tp.color = {c.x(), c.y(), c.z()};
+        tp.extinction = p.number("extinction", 0.0, 0.0, kHuge);
+        if (!points.empty() && tp.s < points.back().s) p.fail("s", "transfer_function points must be sorted by s");
+        points.push_back(tp);
+    }
+    return TransferFunction(lo, hi, std::move(points));
+}
+
+Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
+    Volume vol;
+    const bool fromFile = r.has("file"), procedural = r.has("procedural");
+    if (fromFile == procedural) r.failAt(r.pointer(), "a volume needs exactly one of 'file' or 'procedural'");
+    // Values are read first so their own errors keep their own positions.
+    // A frame-numbered file ("smoke.#.vdb") names the frame being rendered.
+    const std::string fileText = r.string("file", "");
+    fs::path file = frame ? expandFrameName(fileText, *frame) : fileText;
+    if (file.is_relative()) file = baseDir / file;
+    const std::string grid = r.string("grid", ""), kind = r.string("procedural", "");
+    const int res = int(r.number("resolution", 128, 4, 1024));
+    const auto seed = std::uint64_t(r.number("seed", 1, 0, 4294967295.0));
+    try {
+        vol.source = fromFile ? file.string() : "procedural:" + kind;
+        vol.grid = fromFile ? readFloatGrid(vol.source, grid) : makeProceduralGrid(kind, res, seed);
+    } catch (const Error& e) {
+        r.fail(fromFile ? "file" : "procedural", e.what());
+    }
+    vol.name = vol.grid->getName();
+    computeStatistics(vol);
+    if (r.has("transfer_function")) {
+        ObjectReader tf(r.doc(), r.child("transfer_function"), "transfer_function", {"range", "points"});
+        vol.tf = readTransferFunction(tf, vol);
+    } else {
+        vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
+    }
+    return vol;
+}
+
+void readMesh(const ObjectReader& r, const fs::path& baseDir, Scene& scene) {
+    if (!r.has("file")) r.failAt(r.pointer(), "a mesh needs a 'file' (.obj or .ply)");
+    fs::path file = r.string("file", "");
+    if (file.is_relative()) file = baseDir / file;
+    const int level = int(r.number("subdivision", 0, 0, 8));
+    if (r.has("subdivision") && !r.value()["subdivision"].is_number_integer()) r.fail("subdivision", "mesh.subdivision must be an integer level in [0, 8]");
+    const double scale = r.number("scale", 1.0, 1e-12, kHuge);
+    const Vec3d translate = r.vec3("translate", Vec3d(0, 0, 0));
+    try {
+        PolyMesh poly = readPolyMesh(file.string());
+        transformMesh(poly, scale, translate);
+        scene.addMesh(subdivide(poly, level, file.string()));
+    } catch (const Error& e) {
+        r.fail("file", e.what());
+    }
+}
+
+Light readLight(const ObjectReader& r) {
+    Light light;
+    const std::string type = r.string("type", "directional");
+    if (type == "directional") light.type = LightType::Directional;
+    else if (type == "point") light.type = LightType::Point;
+    else if (type == "environment") light.type = LightType::Environment;
+    else r.fail("type", "unknown light type '" + type + "' (known: directional|point|environment)");
+    light.direction = r.vec3("direction", light.direction);
+    if (light.type == LightType::Directional && light.direction.length() < 1e-12) r.fail("direction", "light direction must not be zero");
+    light.direction = light.direction.unitSafe();
+    light.position = r.vec3("position", light.position);
+    const Vec3d c = r.vec3("color", Vec3d(1, 1, 1));
+    light.color = Vec3f(float(c.x()), float(c.y()), float(c.z()));
+    light.intensity = r.number("intensity", 1.0, 0.0, kHuge);
+    return light;
+}
+
+std::string paramText(const ObjectReader& r, const std::string& key) {
+    const json& v = r.value()[key];
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number() || v.is_boolean()) return v.dump();
+    r.fail(key, "render.params." + key + " must be a string, number or boolean");
+}
+
+void readRender(const ObjectReader& r, SceneRenderSettings& out) {
+    if (r.has("technique")) out.technique = r.string("technique", "");
+    if (r.has("resolution")) {
+        const json& v = r.value()["resolution"];
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
+            v[0].get<long long>() < 1 || v[1].get<long long>() < 1 || v[0].get<long long>() > 65536 || v[1].get<long long>() > 65536)
+            r.fail("resolution", "render.resolution must be [width, height], integers in [1, 65536]");
+        out.width = v[0].get<int>(), out.height = v[1].get<int>();
+    }
+    if (r.has("spp")) out.spp = int(r.number("spp", 1, 1, 1 << 20));
+    if (r.has("seed")) out.seed = std::uint64_t(r.number("seed", 0, 0, 9007199254740992.0));
+    if (r.has("params")) {
+        const json& params = r.value()["params"];
+        if (!params.is_object()) r.fail("params", "render.params must be an object");
+        ObjectReader pr(r.doc(), r.child("params"), "render.params", [&] {
+            std::set<std::string> keys;
+            for (const auto& item : params.items()) keys.insert(item.key());
+            return keys;
+        }());
+        for (const auto& item : params.items()) out.params[item.key()] = paramText(pr, item.key());
+    }
+}
+
+template <class Fn>
+void forEachInArray(const JsonDoc& doc, const std::string& pointer, const std::string& what, Fn fn) {
+    const json& arr = doc.root().at(json::json_pointer(pointer));
+    if (!arr.is_array()) throw Error(doc.where(pointer) + ": '" + what + "' must be an array");
+    for (std::size_t i = 0; i < arr.size(); ++i) fn(pointer + "/" + std::to_string(i));
+}
+
+Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::optional<int> frame) {
+    const JsonDoc doc = JsonDoc::load(path);
+    ObjectReader top(doc, "", "scene", {"camera", "volumes", "meshes", "lights", "render"});
+    const fs::path baseDir = fs::path(path).parent_path();
+    Scene scene;
+    scene.source = path;
+    if (top.has("volumes"))
+        forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
+            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function"}), baseDir, frame));
+        });
+    if (top.has("meshes"))
+        forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) {
+            readMesh(ObjectReader(doc, p, "mesh", {"file", "subdivision", "scale", "translate"}), baseDir, scene);
+        });
+    if (top.has("lights"))
+        forEachInArray(doc, "/lights", "lights", [&](const std::string& p) {
+            scene.lights.push_back(readLight(ObjectReader(doc, p, "light", {"type", "direction", "position", "color", "intensity"})));
+        });
+    if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", {"technique", "resolution", "spp", "seed", "params"}), scene.render);
+    if (top.has("camera")) {
+        readSceneCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov", "keys", "shutter"}), frame, scene);
+    }
+    else if (!scene.volumes.empty() || !scene.meshes.empty()) {
+        const double sceneAspect = scene.render.width ? double(*scene.render.width) / *scene.render.height : 1.0;
+        scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect.value_or(sceneAspect));
+    }
+    return scene;
+}
+
+Scene sceneAroundVolume(Volume vol, const std::string& source, double aspect) {
+    Scene scene;
+    scene.source = source;
+    scene.volumes.push_back(std::move(vol));
+    scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect);
+    return scene;
+}
+
+Scene loadBareVdb(const std::string& path, double aspect, const std::string& gridName) {
+    Volume vol;
+    vol.source = path;
+    vol.grid = readFloatGrid(path, gridName);
+    vol.name = vol.grid->getName();
+    computeStatistics(vol);
+    vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
+    return sceneAroundVolume(std::move(vol), path, aspect);
+}
+
+// The analytic 2D images need no volume: the scene only names the technique.
+Scene loadAnalyticBuiltin(const std::string& name) {
+    Scene scene;
+    scene.source = "builtin:" + name;
+    scene.render.technique = "analytic.2d";
+    scene.render.params["scene"] = name;
+    return scene;
+}
+
+Scene loadBareMesh(const std::string& path, double aspect) {
+    Scene scene;
+    scene.source = path;
+    scene.addMesh(triangulate(readPolyMesh(path), path));
+    scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect);
+    scene.render.technique = "mesh.pathtrace";
+    bool emits = false;
+    for (const Material& m : scene.materials) emits |= m.emissive();
+    if (!emits) {  // a key light from above the camera's left shoulder
+        Light key;
+        key.direction = Vec3d(0.35, -0.6, -1.0).unitSafe();
+        key.intensity = 3.0;
+        scene.lights.push_back(key);
+    }
+    return scene;
+}
+
+Scene loadBuiltin(const std::string& name, double aspect) {
+    if (isAnalyticSceneName(name)) return loadAnalyticBuiltin(name);
+    if (name != "cloud" && name != "sphere")
+        throw Error("unknown built-in scene 'builtin:" + name + "' (known: " + builtinSceneNames() + ")");
+    Volume vol;
+    vol.source = "procedural:" + name;
+    vol.grid = makeProceduralGrid(name, name == "cloud" ? 128 : 64, 1);
+    vol.name = vol.grid->getName();
+    computeStatistics(vol);
+    vol.tf = name == "cloud"
+                 ? TransferFunction(0.0, 1.0, {{0.0, {0.25, 0.35, 0.7}, 0.0}, {0.25, {0.7, 0.75, 0.9}, 0.015}, {0.6, {1.0, 0.9, 0.75}, 0.06}, {1.0, {1.0, 0.7, 0.4}, 0.12}})
+                 : TransferFunction(0.0, 1.0, {{0.0, {1, 1, 1}, 0.0}, {1.0, {1, 1, 1}, 0.05}});
+    Scene scene = sceneAroundVolume(std::move(vol), "builtin:" + name, aspect);
+    scene.camera.eye = scene.camera.target + Vec3d(0.6, 0.35, 1.25);  // three-quarter view
+    return scene;
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace
+
+const char* builtinSceneNames() {
+    return "builtin:cloud|builtin:sphere|builtin:zoneplate|builtin:grating|builtin:checker|builtin:siemens|builtin:lines|builtin:disc";
+}
+
+Camera Scene::cameraAt(double u) const {
+    return cameraPath.keys.size() < 2 || shutter.instant() ? camera : cameraPath.at(shutter.frameTime(frame, u));
+}
+
+bool Scene::cameraMoves() const {
+    if (cameraPath.keys.size() < 2 || shutter.instant()) return false;
+    const double open = shutter.frameTime(frame, 0), close = shutter.frameTime(frame, 1);
+    const auto differs = [](const Camera& a, const Camera& b) {
+        return a.eye != b.eye || a.target != b.target || a.up != b.up || a.fovY != b.fovY;
+    };
+    const Camera first = cameraPath.at(open);
+    if (differs(first, cameraPath.at(close))) return true;
+    for (const auto& [f, cam] : cameraPath.keys)  // a path may leave and come back within the shutter
+        if (f > open && f < close && differs(first, cam)) return true;
+    return false;
+}
+
+BBoxd Scene::worldBox() const {
+    BBoxd box;
+    for (const Volume& v : volumes) box.expand(v.worldBox());
+    for (const TriangleMesh& m : meshes) box.expand(m.bounds());
+    return box;
+}
+
+Scene loadScene(const std::string& input, std::optional<double> aspect, const std::string& gridName,
+                std::optional<int> frame) {
+    if (!gridName.empty() && lowerExtension(input) != ".vdb") throw Error("--grid applies to a bare .vdb input; a scene file names its grids itself");
+    if (input.rfind("builtin:", 0) == 0) return loadBuiltin(input.substr(8), aspect.value_or(1.0));
+    const std::string ext = lowerExtension(input);
+    if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0), gridName);
+    if (ext == ".obj" || ext == ".ply") return loadBareMesh(input, aspect.value_or(1.0));
+    if (ext == ".json") {
+        if (!fs::exists(input)) throw Error("scene '" + input + "': no such file");
+        return loadJsonScene(input, aspect, frame);
+    }
+    throw Error("input '" + input + "': expected a scene .json, a .vdb, .obj or .ply file or " + builtinSceneNames());
+}
+
+}  // namespace weft

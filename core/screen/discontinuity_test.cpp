@@ -1,0 +1,88 @@
+// The discontinuity buffer on synthetic G-buffers, and the blur that must
+// not cross what it marks.
+#include <gtest/gtest.h>
+
+#include "core/screen/discontinuity.hpp"
+#include "core/base/rng.hpp"
+
+using namespace weft;
+
+namespace {
+
+// A w x h G-buffer of a plane z = 0 seen from z = 10, normal +z.
+GBuffer plane(int w, int h) {
+    GBuffer g;
+    g.width = w, g.height = h;
+    g.texels.resize(std::size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            GTexel& t = g.at(x, y);
+            t.position = Vec3f(float(x) * 0.01f, float(y) * 0.01f, 0);
+            t.normal = Vec3f(0, 0, 1), t.depth = 10, t.material = 0, t.front = true;
+        }
+    return g;
+}
+
+}  // namespace
+
+TEST(Discontinuity, NormalStepMarksTheColumnBeforeIt) {
+    GBuffer g = plane(8, 5);
+    for (int y = 0; y < 5; ++y)
+        for (int x = 4; x < 8; ++x) g.at(x, y).normal = Vec3f(1, 0, 0);
+    const auto d = discontinuityBuffer(g, {});
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 8; ++x) EXPECT_EQ(d[std::size_t(y) * 8 + x], x == 3 ? 1 : 0) << x << "," << y;
+}
+
+TEST(Discontinuity, DepthStepAndDiagonalAndBackground) {
+    GBuffer g = plane(6, 6);
+    g.at(5, 5).position += Vec3f(0, 0, 2);  // far behind: only its upper-left diagonal neighbour sees it... and its left/top ones
+    auto d = discontinuityBuffer(g, {0.9f, 0.05f});
+    EXPECT_EQ(d[4 * 6 + 4], 1);  // (4,4): diagonal neighbour (5,5) differs
+    EXPECT_EQ(d[5 * 6 + 4], 1);  // (4,5): +x neighbour
+    EXPECT_EQ(d[4 * 6 + 5], 1);  // (5,4): +y neighbour
+    EXPECT_EQ(d[5 * 6 + 5], 0);  // no positive neighbours inside the image
+    EXPECT_EQ(d[3 * 6 + 3], 0);
+    // A looser threshold accepts the same step.
+    d = discontinuityBuffer(g, {0.9f, 0.5f});
+    EXPECT_EQ(d[4 * 6 + 4], 0);
+    g.at(0, 1).material = -1;  // background next to surface
+    d = discontinuityBuffer(g, {});
+    EXPECT_EQ(d[0], 1);
+    EXPECT_EQ(d[1 * 6 + 0], 1);
+}
+
+TEST(Discontinuity, BlurKeepsConstantsAndDoesNotCrossEdges) {
+    const int w = 16, h = 8;
+    GBuffer g = plane(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 8; x < w; ++x) g.at(x, y).normal = Vec3f(1, 0, 0);
+    const auto disc = discontinuityBuffer(g, {});
+    std::vector<float> data(std::size_t(w) * h * 2);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) data[(std::size_t(y) * w + x) * 2] = x < 8 ? 0.0f : 1.0f, data[(std::size_t(y) * w + x) * 2 + 1] = 3.0f;
+    discontinuityBlur(data, w, h, 2, disc, 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            EXPECT_FLOAT_EQ(data[(std::size_t(y) * w + x) * 2], x < 8 ? 0.0f : 1.0f) << x << "," << y;
+            EXPECT_NEAR(data[(std::size_t(y) * w + x) * 2 + 1], 3.0f, 1e-5f);
+        }
+}
+
+TEST(Discontinuity, BlurReducesNoiseInsideARegion) {
+    const int w = 32, h = 32;
+    const GBuffer g = plane(w, h);
+    const auto disc = discontinuityBuffer(g, {});
+    std::vector<float> data(std::size_t(w) * h);
+    Rng rng(7);
+    for (float& v : data) v = rng.uniform();
+    auto variance = [&] {
+        double s = 0, s2 = 0;
+        for (float v : data) s += v, s2 += double(v) * v;
+        const double mean = s / double(data.size());
+        return s2 / double(data.size()) - mean * mean;
+    };
+    const double before = variance();
+    discontinuityBlur(data, w, h, 1, disc, 2);
+    EXPECT_LT(variance(), before / 4);
+}

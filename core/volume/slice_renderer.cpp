@@ -1,0 +1,27 @@
+#include "core/volume/slice_renderer.hpp"
+
+#include "core/base/error.hpp"
+
+namespace weft {
+
+std::vector<ParamSpec> sliceParamSpecs() {
+    return {floatParam("spacing", 1.0, 1.0 / 64, 64, "distance between slices, in voxels (the minimum sampling distance)"),
+            intParam("table_res", 256, 8, 2048, "pre-integration table entries per scalar axis"),
+            enumParam("table_precision", "float32", {"float32", "8bit"}, "pre-integration table storage (8bit emulates RGBA8 tables)")};
+}
+
+SliceParams readSliceParams(const ParamSet& p) {
+    return {p.getFloat("spacing"), int(p.getInt("table_res")),
+            p.getString("table_precision") == "8bit" ? PreintPrecision::Bits8 : PreintPrecision::Float32};
+}
+
+const Volume& requireSliceableVolume(const Scene& scene, const std::string& technique) {
+    if (scene.volumes.size() != 1)
+        throw Error(technique + " renders exactly one volume; the scene has " + std::to_string(scene.volumes.size()));
+    const Volume& vol = scene.volumes.front();
+    if (vol.tf.lookup(vol.grid->background()).extinction > 0)
+        throw Error(technique + ": the transfer function must be transparent at the grid's background value");
+    return vol;
+}
+
+}  // namespace weft

@@ -1,0 +1,48 @@
+#pragma once
+// What the slice-based volume techniques (volume.preint, volume.adaptive3d)
+// share: their common parameters, the scene checks, and sampling the data
+// at a point of a slice as a normalised scalar.
+#include <openvdb/tools/Interpolation.h>
+
+#include <vector>
+
+#include "core/base/params.hpp"
+#include "core/volume/preintegration.hpp"
+#include "core/scene/scene.hpp"
+
+namespace weft {
+
+struct SliceParams {
+    double spacing;  // voxels between slices
+    int tableResolution;
+    PreintPrecision precision;
+};
+
+// spacing, table_res, table_precision.
+std::vector<ParamSpec> sliceParamSpecs();
+SliceParams readSliceParams(const ParamSet& p);
+
+// One volume whose transfer function is transparent at the background value
+// (samples outside the volume read as the background, as in the paper).
+const Volume& requireSliceableVolume(const Scene& scene, const std::string& technique);
+
+// Trilinear data lookups returning s = tf.normalize(value).
+class ScalarSampler {
+public:
+    explicit ScalarSampler(const Volume& volume)
+        : volume_(volume), accessor_(volume.grid->getConstAccessor()), sampler_(accessor_, volume.grid->transform()),
+          background_(float(volume.tf.normalize(volume.grid->background()))) {}
+    float sample(const openvdb::Vec3d& indexPos) const {
+        return float(volume_.tf.normalize(sampler_.isSample(indexPos)));
+    }
+    float background() const { return background_; }
+
+private:
+    using Accessor = openvdb::FloatGrid::ConstAccessor;
+    const Volume& volume_;
+    Accessor accessor_;
+    openvdb::tools::GridSampler<Accessor, openvdb::tools::BoxSampler> sampler_;
+    float background_;
+};
+
+}  // namespace weft

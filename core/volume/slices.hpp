@@ -1,0 +1,42 @@
+#pragma once
+// Slice geometry for slice-based volume rendering (Kraus et al. 2007).
+// Slices are shells at equal distance from the eye, t_i = tNear + i *
+// spacing along every view ray (in voxels, the volume's index space). For
+// an orthographic view they are the paper's view-aligned planes; for a
+// perspective view they keep every segment between slices i and j exactly
+// (j - i) * spacing long on every ray, so a pre-integration table needs
+// only the lengths 1..2^lmax slices.
+#include <vector>
+
+#include "core/scene/camera.hpp"
+#include "core/volume/volume.hpp"
+
+namespace weft {
+
+struct SliceSetup {
+    Vec3d eye;           // index space
+    double spacing = 1;  // voxels between slices
+    double tNear = 0;    // distance of slice 0 from the eye, voxels
+    int imax = 0;        // last slice index, a multiple of 2^lmax
+    double t(int i) const { return tNear + spacing * i; }
+};
+
+// Slices covering the volume's index box, the last index rounded up to a
+// multiple of 2^lmax as the paper requires.
+SliceSetup makeSliceSetup(const Camera& camera, const Volume& volume, double spacing, int lmax);
+
+// The rays of one pyramid level. Pixel (x, y) of level l looks through the
+// centre of its 2^l x 2^l block of level-0 pixels.
+struct LevelRays {
+    int width = 0, height = 0;
+    std::vector<Vec3d> dir;         // index space, unit length
+    std::vector<int> first, last;   // slices inside the index box (first > last: none)
+    int index(int x, int y) const { return y * width + x; }
+};
+
+// Level-0 size is padded up to a multiple of 2^lmax; imageWidth/Height
+// define the camera's pixel grid.
+LevelRays makeLevelRays(const Camera& camera, const Volume& volume, const SliceSetup& slices, int level,
+                        int paddedWidth, int paddedHeight, int imageWidth, int imageHeight);
+
+}  // namespace weft

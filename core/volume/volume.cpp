@@ -1,0 +1,81 @@
+#include "core/volume/volume.hpp"
+
+#include <openvdb/io/File.h>
+#include <openvdb/tools/Count.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <mutex>
+
+#include "core/base/error.hpp"
+
+namespace weft {
+
+void initVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+openvdb::CoordBBox Volume::indexBox() const {
+    openvdb::CoordBBox box = activeBox;
+    box.expand(1);
+    return box;
+}
+
+BBoxd Volume::worldBox() const {
+    const openvdb::CoordBBox ib = indexBox();
+    const auto& xf = grid->transform();
+    BBoxd box;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3d p((corner & 1) ? ib.max().x() + 0.5 : ib.min().x() - 0.5,
+                      (corner & 2) ? ib.max().y() + 0.5 : ib.min().y() - 0.5,
+                      (corner & 4) ? ib.max().z() + 0.5 : ib.min().z() - 0.5);
+        box.expand(xf.indexToWorld(p));
+    }
+    return box;
+}
+
+openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {
+    initVdb();
+    if (!std::filesystem::exists(path)) throw Error("volume '" + path + "': no such file");
+    openvdb::io::File file(path);
+    try {
+        file.open(false);
+    } catch (const openvdb::Exception&) {
+        throw Error("volume '" + path + "': not an OpenVDB file");
+    }
+    std::string names, chosen;
+    for (auto it = file.beginName(); it != file.endName(); ++it) {
+        names += (names.empty() ? "" : ", ") + it.gridName();
+        if (gridName.empty() && (chosen.empty() || it.gridName() == "density")) chosen = it.gridName();
+    }
+    if (!gridName.empty()) chosen = gridName;
+    if (chosen.empty() || !file.hasGrid(chosen))
+        throw Error("volume '" + path + "': no grid named '" + chosen + "' (grids: " + (names.empty() ? "none" : names) + ")");
+    openvdb::GridBase::Ptr base = file.readGrid(chosen);
+    auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    if (!grid) throw Error("volume '" + path + "': grid '" + chosen + "' holds " + base->valueType() + " values; weft renders float grids");
+    if (!grid->transform().isLinear()) throw Error("volume '" + path + "': grid '" + chosen + "' has a non-linear (frustum) transform, which weft does not support");
+    return grid;
+}
+
+void computeStatistics(Volume& volume) {
+    volume.activeBox = volume.grid->evalActiveVoxelBoundingBox();
+    if (volume.grid->activeVoxelCount() == 0 && volume.grid->tree().activeTileCount() == 0) {
+        volume.valueMin = volume.valueMax = volume.grid->background();
+        return;
+    }
+    const auto range = openvdb::tools::minMax(volume.grid->tree());
+    volume.valueMin = range.min();
+    volume.valueMax = range.max();
+    if (std::isfinite(volume.valueMin) && std::isfinite(volume.valueMax)) return;
+    // NaN or Inf voxels (a broken simulation) must not make the range useless.
+    float lo = std::numeric_limits<float>::max(), hi = -lo;
+    for (auto it = volume.grid->cbeginValueOn(); it; ++it)
+        if (std::isfinite(*it)) lo = std::min(lo, *it), hi = std::max(hi, *it);
+    volume.valueMin = lo <= hi ? lo : 0.0f;
+    volume.valueMax = lo <= hi ? hi : 0.0f;
+}
+
+}  // namespace weft

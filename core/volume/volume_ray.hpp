@@ -1,0 +1,50 @@
+#pragma once
+// Camera rays in a volume's index space (unit = one voxel), clipped to the
+// region where the grid can be non-zero, and front-to-back compositing of
+// the emission-absorption model.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "core/scene/camera.hpp"
+#include "core/volume/transfer_function.hpp"
+#include "core/volume/volume.hpp"
+
+namespace weft {
+
+struct IndexRay {
+    Vec3d origin;  // index space
+    Vec3d dir;     // index space, unit length: t counts voxels
+    double t0 = 0, t1 = 0;  // entry and exit of the volume's index box
+    Vec3d at(double t) const { return origin + dir * t; }
+};
+
+// Clips a world ray to the volume's index box; nothing when it misses.
+std::optional<IndexRay> toIndexRay(const Ray& worldRay, const Volume& volume);
+
+// Premultiplied colour and transmittance of one ray, front to back.
+struct RayAccumulator {
+    float r = 0, g = 0, b = 0;
+    float transmittance = 1;
+
+    // A segment of opacity alpha emitting colour c per unit opacity.
+    void add(const TfSample& c, float alpha) {
+        const float w = transmittance * alpha;
+        r += w * c.r, g += w * c.g, b += w * c.b;
+        transmittance *= 1.0f - alpha;
+    }
+    // A pre-integrated segment: opacity-weighted colour (r, g, b) and opacity a.
+    void addPremultiplied(float sr, float sg, float sb, float a) {
+        r += transmittance * sr, g += transmittance * sg, b += transmittance * sb;
+        transmittance *= 1.0f - a;
+    }
+    float opacity() const { return 1.0f - transmittance; }
+};
+
+// Opacity of a segment of `length` voxels at constant extinction; stays in
+// [0, 1] for any extinction, including huge ones.
+inline float segmentOpacity(float extinction, float length) {
+    return -std::expm1(-std::max(extinction, 0.0f) * length);
+}
+
+}  // namespace weft

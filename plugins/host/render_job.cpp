@@ -1,0 +1,232 @@
+#include "plugins/host/render_job.hpp"
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "core/base/atomic_file.hpp"
+#include "core/base/frames.hpp"
+#include "core/base/progress.hpp"
+#include "core/scene/scene.hpp"
+#include "plugins/host/command.hpp"
+#include "plugins/technique.hpp"
+
+namespace weft {
+
+std::pair<int, int> parseResolution(const std::string& text) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
+        w > 65536 || h > 65536)
+        throw Error("bad resolution '" + text + "': expected WxH with W and H in [1, 65536], e.g. 512x512");
+    return {w, h};
+}
+
+namespace {
+
+void checkOutputs(const RenderRequest& r) {
+    if (!r.output.empty()) {
+        checkOutputPath(r.output, "output");
+        if (!(r.output.size() > 4 && r.output.compare(r.output.size() - 4, 4, ".exr") == 0))
+            throw Error("output '" + r.output + "': the render output must be an .exr file (use --preview for PNG)");
+    }
+    if (!r.preview.empty()) {
+        checkOutputPath(r.preview, "preview");
+        if (!isPreviewPath(r.preview)) throw Error("preview '" + r.preview + "': expected a .png, .jpg or .tif file");
+    }
+    if (!r.stats.empty()) checkOutputPath(r.stats, "stats");
+}
+
+RenderSettings settingsFor(const RenderRequest& r, const Scene& scene) {
+    RenderSettings s;
+    if (r.resolution) std::tie(s.width, s.height) = parseResolution(*r.resolution);
+    else if (scene.render.width) s.width = *scene.render.width, s.height = *scene.render.height;
+    s.spp = r.spp.value_or(scene.render.spp.value_or(1));
+    if (s.spp < 1 || s.spp > (1 << 20)) throw Error("--spp " + std::to_string(s.spp) + " is outside [1, 1048576]");
+    s.seed = r.seed.value_or(scene.render.seed.value_or(0));
+    s.showProgress = Progress::terminalAttached();
+    return s;
+}
+
+// volume.raymarch, or volume.singlescatter for `--set compat=vdb_render`
+// (a vdb_render user's command line works as it is).
+std::string defaultTechnique(const std::vector<std::string>& sets) {
+    for (const std::string& kv : sets)
+        if (kv == "compat=vdb_render") return "volume.singlescatter";
+    return "volume.raymarch";
+}
+
+// Replaces NaN/Inf by 0 (a last guard: techniques must not produce them) and counts them.
+std::int64_t scrubNonFinite(Image& image) {
+    std::int64_t bad = 0;
+    for (float& v : image.data())
+        if (!std::isfinite(v)) v = 0.0f, ++bad;
+    return bad;
+}
+
+Metadata metadataFor(const RenderRequest& r, const std::string& technique, const ParamSet& params,
+                     const RenderSettings& s, const CounterMap& counters) {
+    Metadata md{{"weft:version", WEFT_VERSION}, {"weft:input", r.input}, {"weft:technique", technique},
+                {"weft:seed", std::to_string(s.seed)}, {"weft:spp", std::to_string(s.spp)}};
+    for (const auto& [k, v] : params.values()) md.emplace_back("weft:param:" + k, v);
+    for (const auto& [k, v] : counters) md.emplace_back("weft:counter:" + k, std::to_string(v));
+    return md;
+}
+
+// Tile metadata: merge checks a set against it, and places each band.
+void addTileMetadata(Metadata& md, const std::string& tile, const ImageWindow& w, int width, int height) {
+    const auto [index, count] = parseTileSpec(tile);
+    md.emplace_back("weft:tile", std::to_string(index) + "/" + std::to_string(count));
+    md.emplace_back("weft:tile:full_resolution", std::to_string(w.fullWidth) + "x" + std::to_string(w.fullHeight));
+    md.emplace_back("weft:tile:data_window", std::to_string(w.x) + " " + std::to_string(w.y) + " " +
+                                                 std::to_string(w.x + width - 1) + " " + std::to_string(w.y + height - 1));
+}
+
+// The rows [y0, y1) of an image, all channels.
+Image cropRows(const Image& full, int y0, int y1) {
+    Image band(full.width(), y1 - y0, full.channelNames());
+    const std::size_t rowFloats = std::size_t(full.width()) * full.channelCount();
+    std::copy(full.data().begin() + std::ptrdiff_t(y0 * rowFloats), full.data().begin() + std::ptrdiff_t(y1 * rowFloats),
+              band.data().begin());
+    return band;
+}
+
+void writeStats(const RenderRequest& r, const RenderOutcome& out, int threads) {
+    nlohmann::ordered_json j;
+    for (const auto& [k, v] : out.metadata) {
+        if (k.rfind("weft:param:", 0) == 0) j["params"][k.substr(11)] = v;
+        else if (k.rfind("weft:counter:", 0) != 0 && k != "weft:complete") j[k.substr(5)] = v;
+    }
+    j["resolution"] = {out.image.width(), out.image.height()};
+    j["threads"] = threads;
+    j["counters"] = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : out.counters) j["counters"][k] = v;
+    for (const auto& [k, v] : out.timingsMs) j["timings_ms"][k] = v;
+    AtomicOutput file(r.stats);
+    std::ofstream os(file.tempPath());
+    os << j.dump(2) << "\n";
+    os.close();
+    if (!os) throw Error("stats '" + r.stats + "': write failed");
+    file.commit();
+}
+
+int effectiveThreads(int requested) {
+    return requested > 0 ? requested : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+}  // namespace
+
+RenderOutcome renderToImage(const RenderRequest& r) {
+    if (!r.tile.empty()) parseTileSpec(r.tile);  // a bad spec fails before the scene loads
+    if (r.threads < 0) throw Error("--threads must be >= 0 (0 = all cores)");
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
+    RenderContext ctx;
+    std::optional<double> aspect;
+    if (r.resolution) {
+        auto [w, h] = parseResolution(*r.resolution);
+        aspect = double(w) / h;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const Scene scene = loadScene(r.input, aspect, r.grid, r.frame);
+    ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ctx.settings = settingsFor(r, scene);
+    RowBand band{0, ctx.settings.height};
+    if (!r.tile.empty()) {
+        const auto [index, count] = parseTileSpec(r.tile);
+        band = tileRows(ctx.settings.height, index, count);
+        ctx.settings.rowBegin = band.begin, ctx.settings.rowEnd = band.end;
+    }
+
+    const std::string name = r.technique.value_or(scene.render.technique.value_or(defaultTechnique(r.sets)));
+    const TechniqueInfo& info = techniques().get(name);
+    std::map<std::string, std::string> given = scene.render.params;
+    for (const std::string& kv : r.sets) {
+        auto [k, v] = splitKeyValue(kv, "--set");
+        given[k] = v;
+    }
+    const ParamSet params = info.params.parse(given);
+    if (scene.cameraMoves() && !info.motionBlur)
+        throw Error("the camera moves while the shutter is open, and " + name +
+                    " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
+    auto technique = info.create(scene, params);
+
+    RenderOutcome out;
+    {
+        ScopedTimer timer(ctx.timings, "render");
+        out.image = technique->render(scene, ctx);
+    }
+    if (std::int64_t bad = scrubNonFinite(out.image)) {
+        ctx.counters.add("image.nonfinite", bad);
+        std::fprintf(stderr, "weft: warning: %s produced %lld NaN/Inf values (written as 0)\n", name.c_str(), (long long)bad);
+    }
+    out.window = ImageWindow{0, band.begin, out.image.width(), out.image.height()};
+    if (!r.tile.empty()) out.image = cropRows(out.image, band.begin, band.end);
+    out.counters = ctx.counters.merged();
+    out.metadata = metadataFor(r, name, params, ctx.settings, out.counters);
+    if (r.frame) out.metadata.emplace_back("weft:frame", std::to_string(*r.frame));
+    if (!scene.shutter.instant())
+        out.metadata.emplace_back("weft:shutter", formatNumber(scene.shutter.open) + " " + formatNumber(scene.shutter.close));
+    if (!r.tile.empty()) addTileMetadata(out.metadata, r.tile, out.window, out.image.width(), out.image.height());
+    out.metadata.emplace_back("weft:complete", "1");
+    out.timingsMs = ctx.timings.entries();
+    return out;
+}
+
+RenderOutcome runRender(const RenderRequest& r) {
+    checkOutputs(r);
+    RenderOutcome out = renderToImage(r);
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!r.output.empty()) writeExr(out.image, r.output, out.metadata, out.window);
+    if (!r.preview.empty()) writePreview(out.image, r.preview);
+    out.timingsMs.emplace_back("write", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (!r.stats.empty()) writeStats(r, out, effectiveThreads(r.threads));
+    if (r.verbose) {
+        std::printf("%s -> %s (%dx%d)\ncounters:\n%s", r.input.c_str(), r.output.c_str(), out.image.width(),
+                    out.image.height(), Counters::table(out.counters).c_str());
+        std::printf("timings:\n");
+        for (const auto& [k, v] : out.timingsMs) std::printf("  %-24s %12.1f ms\n", k.c_str(), v);
+    }
+    return out;
+}
+
+std::vector<RenderRequest> requestsForFrames(const RenderRequest& r, const std::vector<int>& frames) {
+    if (frames.size() > 1) {
+        const std::pair<const char*, const std::string*> named[] = {{"output", &r.output}, {"preview", &r.preview}, {"stats", &r.stats}};
+        for (const auto& [what, name] : named)
+            if (!name->empty() && !hasFrameWildcard(*name))
+                throw Error(std::string(what) + " '" + *name + "' has no frame number (# = 4 digits, @ = 1 digit, e.g. out.#.exr) for " +
+                            std::to_string(frames.size()) + " frames");
+    }
+    std::vector<RenderRequest> out;
+    for (int f : frames) {
+        RenderRequest q = r;
+        q.frame = f;
+        for (std::string* name : {&q.input, &q.output, &q.preview, &q.stats}) *name = expandFrameName(*name, f);
+        out.push_back(std::move(q));
+    }
+    return out;
+}
+
+int runRenders(const std::vector<RenderRequest>& requests, const AfterRender& after) {
+    for (const RenderRequest& q : requests) checkOutputs(q);  // unwritable outputs fail before any render
+    int failed = 0;
+    for (const RenderRequest& q : requests) {
+        try {
+            RenderOutcome out = runRender(q);
+            if (after) after(q, out);
+        } catch (const std::exception& e) {
+            ++failed;
+            const std::string frame = q.frame ? "frame " + std::to_string(*q.frame) + ": " : "";
+            std::fprintf(stderr, "weft: error: %s%s\n", frame.c_str(), e.what());
+        }
+    }
+    if (failed && requests.size() > 1)
+        std::fprintf(stderr, "weft: %d of %zu renders failed\n", failed, requests.size());
+    return failed;
+}
+
+}  // namespace weft
