@@ -12,7 +12,7 @@
 // share C++ types with the host, so they must be rebuilt against its headers.
 #include "plugins/technique.hpp"
 
-#define WEFT_PLUGIN_ABI_VERSION 1
+#define WEFT_PLUGIN_ABI_VERSION 2
 
 extern "C" {
 typedef int (*weft_plugin_abi_version_fn)();

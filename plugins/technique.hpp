@@ -21,6 +21,12 @@ public:
     virtual Image render(const Scene& scene, RenderContext& ctx) = 0;
 };
 
+// What a technique renders. A scene holding content the technique cannot
+// render is refused with the techniques that can, never half rendered.
+enum class Content : unsigned { None = 0, Volumes = 1, Meshes = 2, VolumesAndMeshes = 3 };
+constexpr bool covers(Content has, Content needs) { return (unsigned(has) & unsigned(needs)) == unsigned(needs); }
+const char* contentName(Content c);  // "volumes", "meshes", "volumes and meshes", "no scene content"
+
 struct TechniqueInfo {
     std::string name;
     std::string summary;
@@ -29,7 +35,12 @@ struct TechniqueInfo {
     // Whether each camera sample takes its own time in the shutter
     // (Scene::cameraAt); others cannot render a moving camera.
     bool motionBlur = false;
+    Content renders = Content::Volumes;
 };
+
+// Throws when the scene holds volumes or meshes the technique does not
+// render, naming what would be dropped and the techniques that render it all.
+void checkTechniqueContent(const TechniqueInfo& info, const Scene& scene);
 
 using TechniqueRegistry = NamedRegistry<TechniqueInfo>;
 TechniqueRegistry& techniques();

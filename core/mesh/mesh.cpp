@@ -29,10 +29,11 @@ TriangleMesh triangulate(const PolyMesh& mesh, const std::string& source) {
     return out;
 }
 
-void transformMesh(PolyMesh& mesh, double scale, const Vec3d& translate) {
-    for (Vec3f& p : mesh.positions)
-        p = Vec3f(float(p.x() * scale + translate.x()), float(p.y() * scale + translate.y()),
-                  float(p.z() * scale + translate.z()));
+void transformMesh(PolyMesh& mesh, const openvdb::math::Mat4d& objectToWorld) {
+    for (Vec3f& p : mesh.positions) {
+        const Vec3d w = objectToWorld.transform(Vec3d(p.x(), p.y(), p.z()));
+        p = Vec3f(float(w.x()), float(w.y()), float(w.z()));
+    }
 }
 
 }  // namespace weft

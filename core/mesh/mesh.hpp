@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <openvdb/math/Mat4.h>
+
 #include "core/scene/camera.hpp"
 
 namespace weft {
@@ -64,7 +66,7 @@ TriangleMesh subdivide(const PolyMesh& mesh, int level, const std::string& sourc
 // line naming the file and what is wrong with it.
 PolyMesh readPolyMesh(const std::string& path);
 
-// Scale then translate every position.
-void transformMesh(PolyMesh& mesh, double scale, const Vec3d& translate);
+// Moves every position by an object-to-world map (core/scene/placement.hpp).
+void transformMesh(PolyMesh& mesh, const openvdb::math::Mat4d& objectToWorld);
 
 }  // namespace weft

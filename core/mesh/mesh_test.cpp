@@ -147,7 +147,7 @@ TEST(MeshScene, JsonMeshEntriesAreCheckedWithPositions) {
 
     test::writeText(dir / "bad.json", "{\"meshes\": [{\"file\": \"torus.obj\",\n \"subdivide\": 2}]}");
     std::string msg = errorOf([&] { loadScene((dir / "bad.json").string()); });
-    EXPECT_NE(msg.find("bad.json:2:2: unknown key 'subdivide' in mesh; valid keys: file, scale, subdivision, translate"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("bad.json:2:2: unknown key 'subdivide' in mesh; valid keys: file, rotate, scale, subdivision, translate"), std::string::npos) << msg;
     test::writeText(dir / "level.json", R"({"meshes": [{"file": "torus.obj", "subdivision": 9}]})");
     msg = errorOf([&] { loadScene((dir / "level.json").string()); });
     EXPECT_NE(msg.find("level.json:1:"), std::string::npos) << msg;

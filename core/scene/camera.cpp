@@ -36,7 +36,10 @@ Camera CameraPath::at(double frame) const {
     return keys.back().second;
 }
 
-Camera Camera::framing(const BBoxd& box, double fovY, double aspect) {
+Camera Camera::framing(const BBoxd& given, double fovY, double aspect) {
+    // Nothing to frame (an empty grid, the first frame of a cache): the unit cube.
+    const bool some = given.min().x() <= given.max().x() && given.min().y() <= given.max().y() && given.min().z() <= given.max().z();
+    const BBoxd box = some ? given : BBoxd(Vec3d(-0.5), Vec3d(0.5));
     const Vec3d center = box.getCenter();
     const Vec3d extent = box.extents() * 0.5;
     const double tanHalfY = std::tan(0.5 * fovY * M_PI / 180.0);

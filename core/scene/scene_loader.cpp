@@ -9,6 +9,7 @@
 #include "core/base/frames.hpp"
 #include "core/base/json_doc.hpp"
 #include "core/base/params.hpp"
+#include "core/scene/placement.hpp"
 #include "core/scene/scene.hpp"
 
 namespace fs = std::filesystem;
@@ -153,6 +154,34 @@ TransferFunction readTransferFunction(const ObjectReader& r, const Volume& vol) 
     return TransferFunction(lo, hi, std::move(points));
 }
 
+// "scale" (a positive number or three), "rotate" (degrees), "translate".
+Placement readPlacement(const ObjectReader& r) {
+    Placement p;
+    if (r.has("scale") && r.value()["scale"].is_number()) p.scale = Vec3d(r.number("scale", 1.0, 1e-12, kHuge));
+    else p.scale = r.vec3("scale", p.scale);
+    for (int i = 0; i < 3; ++i)
+        if (!(p.scale[i] >= 1e-12 && p.scale[i] <= kHuge)) r.fail("scale", "scale must be positive (a number or [sx, sy, sz])");
+    p.rotateDegrees = r.vec3("rotate", p.rotateDegrees);
+    for (int i = 0; i < 3; ++i)
+        if (std::abs(p.rotateDegrees[i]) > 3600) r.fail("rotate", "rotate must be [rx, ry, rz] in degrees, each within +-3600");
+    p.translate = r.vec3("translate", p.translate);
+    return p;
+}
+
+// "medium": {"absorb": [r, g, b], "scatter": [r, g, b], "g": anisotropy}.
+VolumeMedium readMedium(const ObjectReader& r) {
+    VolumeMedium m;
+    m.fromScene = true;
+    m.absorb = r.vec3("absorb", m.absorb);
+    m.scatter = r.vec3("scatter", m.scatter);
+    for (int i = 0; i < 3; ++i) {
+        if (!(m.absorb[i] >= 0 && m.absorb[i] <= kHuge)) r.fail("absorb", "medium.absorb must be three numbers >= 0");
+        if (!(m.scatter[i] >= 0 && m.scatter[i] <= kHuge)) r.fail("scatter", "medium.scatter must be three numbers >= 0");
+    }
+    m.g = r.number("g", 0.0, -0.99, 0.99);
+    return m;
+}
+
 Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
     Volume vol;
     const bool fromFile = r.has("file"), procedural = r.has("procedural");
@@ -172,6 +201,9 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
         r.fail(fromFile ? "file" : "procedural", e.what());
     }
     vol.name = vol.grid->getName();
+    const Placement placement = readPlacement(r);
+    if (!placement.identity()) vol.grid = placeGrid(vol.grid, placement.matrix());
+    if (r.has("medium")) vol.medium = readMedium(ObjectReader(r.doc(), r.child("medium"), "medium", {"absorb", "scatter", "g"}));
     computeStatistics(vol);
     if (r.has("transfer_function")) {
         ObjectReader tf(r.doc(), r.child("transfer_function"), "transfer_function", {"range", "points"});
@@ -188,11 +220,10 @@ void readMesh(const ObjectReader& r, const fs::path& baseDir, Scene& scene) {
     if (file.is_relative()) file = baseDir / file;
     const int level = int(r.number("subdivision", 0, 0, 8));
     if (r.has("subdivision") && !r.value()["subdivision"].is_number_integer()) r.fail("subdivision", "mesh.subdivision must be an integer level in [0, 8]");
-    const double scale = r.number("scale", 1.0, 1e-12, kHuge);
-    const Vec3d translate = r.vec3("translate", Vec3d(0, 0, 0));
+    const Placement placement = readPlacement(r);
     try {
         PolyMesh poly = readPolyMesh(file.string());
-        transformMesh(poly, scale, translate);
+        transformMesh(poly, placement.matrix());
         scene.addMesh(subdivide(poly, level, file.string()));
     } catch (const Error& e) {
         r.fail("file", e.what());
@@ -261,11 +292,11 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
     scene.source = path;
     if (top.has("volumes"))
         forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
-            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function"}), baseDir, frame));
+            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function", "medium", "translate", "rotate", "scale"}), baseDir, frame));
         });
     if (top.has("meshes"))
         forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) {
-            readMesh(ObjectReader(doc, p, "mesh", {"file", "subdivision", "scale", "translate"}), baseDir, scene);
+            readMesh(ObjectReader(doc, p, "mesh", {"file", "subdivision", "scale", "rotate", "translate"}), baseDir, scene);
         });
     if (top.has("lights"))
         forEachInArray(doc, "/lights", "lights", [&](const std::string& p) {

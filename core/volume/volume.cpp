@@ -17,13 +17,35 @@ void initVdb() {
     std::call_once(once, [] { openvdb::initialize(); });
 }
 
+double Volume::voxelLength() const {
+    const Vec3d v = grid->transform().voxelSize();
+    return std::cbrt(v.x() * v.y() * v.z());
+}
+
+openvdb::FloatGrid::ConstPtr placeGrid(const openvdb::FloatGrid::ConstPtr& grid, const openvdb::math::Mat4d& objectToWorld) {
+    // A shallow copy (the tree is shared, read-only); only its transform is new.
+    openvdb::FloatGrid::Ptr placed = openvdb::ConstPtrCast<openvdb::FloatGrid>(grid->copy());
+    openvdb::math::Transform::Ptr xf = grid->transform().copy();
+    xf->postMult(objectToWorld);
+    placed->setTransform(xf);
+    return placed;
+}
+
+openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid) {
+    openvdb::FloatGrid::Ptr copy = openvdb::ConstPtrCast<openvdb::FloatGrid>(grid.copy());
+    copy->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
+    return copy;
+}
+
 openvdb::CoordBBox Volume::indexBox() const {
     openvdb::CoordBBox box = activeBox;
+    if (box.empty()) return box;  // expanding the empty box would overflow
     box.expand(1);
     return box;
 }
 
 BBoxd Volume::worldBox() const {
+    if (empty()) return BBoxd();  // an empty box: nothing to frame or to hit
     const openvdb::CoordBBox ib = indexBox();
     const auto& xf = grid->transform();
     BBoxd box;

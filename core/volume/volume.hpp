@@ -11,19 +11,47 @@
 
 namespace weft {
 
+// What the scattering techniques see in a volume: absorption and scattering
+// coefficients (R, G, B) per voxel length per unit density, as vdb_render
+// names them, so the same numbers look the same in both, and the
+// Henyey-Greenstein anisotropy g. A voxel length is the cube root of a
+// voxel's world volume, so scaling a volume keeps its optical depth.
+struct VolumeMedium {
+    Vec3d absorb{0.1, 0.1, 0.1};
+    Vec3d scatter{1.5, 1.5, 1.5};
+    double g = 0;
+    bool fromScene = false;  // set in the scene file (else the defaults above)
+};
+
 struct Volume {
     std::string name;    // grid name
     std::string source;  // file path or "procedural:<kind>"
     openvdb::FloatGrid::ConstPtr grid;
     TransferFunction tf;
     float valueMin = 0, valueMax = 0;      // over active values
-    openvdb::CoordBBox activeBox;          // active voxels' bounding box
+    openvdb::CoordBBox activeBox;          // active voxels' bounding box (empty() when none)
+    VolumeMedium medium;
+
+    // No active voxel and no active tile: renders as nothing at once.
+    bool empty() const { return activeBox.empty(); }
+    // World length of one voxel (cube root of its volume): the unit of the
+    // medium's coefficients and of step lengths given in voxels.
+    double voxelLength() const;
 
     // Index-space box that holds every voxel whose value can be non-zero,
     // padded by one voxel for trilinear support.
     openvdb::CoordBBox indexBox() const;
     BBoxd worldBox() const;
 };
+
+// The grid moved by an object-to-world map after its own transform (the
+// scene file's placement); shares the tree, so nothing is copied.
+openvdb::FloatGrid::ConstPtr placeGrid(const openvdb::FloatGrid::ConstPtr& grid, const openvdb::math::Mat4d& objectToWorld);
+
+// The same tree under the identity transform: OpenVDB's ray intersectors
+// need uniform voxels, so they march index-space rays through this copy,
+// which works for any affine (anisotropic, rotated, sheared) transform.
+openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid);
 
 // Calls openvdb::initialize() once.
 void initVdb();

@@ -5,6 +5,7 @@
 namespace weft {
 
 std::optional<IndexRay> toIndexRay(const Ray& worldRay, const Volume& volume) {
+    if (volume.empty()) return std::nullopt;
     const auto& xf = volume.grid->transform();
     IndexRay ray;
     ray.origin = xf.worldToIndex(worldRay.origin);

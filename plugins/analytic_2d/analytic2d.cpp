@@ -74,6 +74,8 @@ const TechniqueRegistrar registrar{{
     "analytic test images (zone plate, grating, checkerboard, Siemens star, thin lines, moving disc) with exact references",
     ParamTable("analytic.2d", analyticParams()),
     [](const Scene&, const ParamSet& p) { return std::make_unique<Analytic2D>(p); },
+    /*motionBlur=*/false,
+    /*renders=*/Content::None,
 }};
 
 }  // namespace

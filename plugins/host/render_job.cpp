@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -28,6 +29,21 @@ std::pair<int, int> parseResolution(const std::string& text) {
 
 namespace {
 
+// Two outputs naming one file would leave only the last written: the render
+// replaced by its statistics, say.
+void checkDistinctOutputs(const RenderRequest& r) {
+    const std::pair<const char*, const std::string*> named[] = {{"-o", &r.output}, {"--preview", &r.preview}, {"--stats", &r.stats}};
+    for (std::size_t i = 0; i < std::size(named); ++i)
+        for (std::size_t j = i + 1; j < std::size(named); ++j) {
+            if (named[i].second->empty() || named[j].second->empty()) continue;
+            std::error_code ec;
+            const auto a = std::filesystem::weakly_canonical(*named[i].second, ec), b = std::filesystem::weakly_canonical(*named[j].second, ec);
+            if (a == b)
+                throw Error(std::string(named[j].first) + " names the same file as " + named[i].first + " ('" + *named[j].second +
+                            "'); each output needs its own file");
+        }
+}
+
 void checkOutputs(const RenderRequest& r) {
     if (!r.output.empty()) {
         checkOutputPath(r.output, "output");
@@ -39,6 +55,7 @@ void checkOutputs(const RenderRequest& r) {
         if (!isPreviewPath(r.preview)) throw Error("preview '" + r.preview + "': expected a .png, .jpg or .tif file");
     }
     if (!r.stats.empty()) checkOutputPath(r.stats, "stats");
+    checkDistinctOutputs(r);
 }
 
 RenderSettings settingsFor(const RenderRequest& r, const Scene& scene) {
@@ -149,6 +166,7 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         given[k] = v;
     }
     const ParamSet params = info.params.parse(given);
+    checkTechniqueContent(info, scene);
     if (scene.cameraMoves() && !info.motionBlur)
         throw Error("the camera moves while the shutter is open, and " + name +
                     " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");

@@ -237,6 +237,8 @@ const TechniqueRegistrar registrar{{
     "indirect light sampled with a fixed budget apportioned by geometric importance, A-Trous filtered (Bauszat et al. 2011)",
     table(),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<AdaptiveIndirect>(scene, p); },
+    /*motionBlur=*/false,
+    /*renders=*/Content::Meshes,
 }};
 
 }  // namespace

@@ -216,6 +216,8 @@ const TechniqueRegistrar registrar{{
                 floatParam("position_threshold", 0.05, 0, 1e6, "discontinuity where neighbours are farther apart than this times their depth"),
                 enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<VplDeferred>(scene, p); },
+    /*motionBlur=*/false,
+    /*renders=*/Content::Meshes,
 }};
 
 }  // namespace

@@ -129,6 +129,7 @@ const TechniqueRegistrar registrar{{
                 enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<PathTracer>(scene, p); },
     /*motionBlur=*/true,
+    /*renders=*/Content::Meshes,
 }};
 
 }  // namespace

@@ -80,6 +80,8 @@ public:
         const RenderSettings& s = ctx.settings;
         params_ = readScatterParams(paramSet_, scene, double(s.width) / s.height);
         const Volume& vol = scene.volumes.front();
+        // OpenVDB's intersector refuses empty grids; an empty frame is transparent.
+        if (vol.empty()) return Image::rgba(s.width, s.height);
         const Camera camera = params_.camera.value_or(scene.camera);
         sigmaT_ = params_.absorb + params_.scatter;
         for (int c = 0; c < 3; ++c) albedo_[c] = sigmaT_[c] > 0 ? params_.scatter[c] / sigmaT_[c] : 0.0;

@@ -26,10 +26,15 @@ protected:
         writeText(dir / "notvdb.vdb", "this is not a vdb file\n");
         writeText(dir / "bad.json", "{\n  \"volumes\": [ { \"procedural\": \"sphere\", \"resolution\": 16 } ],\n  \"camra\": {}\n}\n");
         writeText(dir / "syntax.json", "{\n  \"volumes\": [\n    { \"procedural\": \"sphere\" },\n  ]\n}\n");
+        writeText(dir / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+        writeText(dir / "mixed.json", "{\"volumes\": [{\"procedural\": \"sphere\", \"resolution\": 8}],\n"
+                                      " \"meshes\": [{\"file\": \"tri.obj\"}, {\"file\": \"tri.obj\", \"translate\": [0, 0, -1]}]}\n");
         writeText(dir / "range.json", "{\n  \"volumes\": [ { \"procedural\": \"sphere\", \"resolution\": 2 } ]\n}\n");
     }
-    std::string substitute(std::string args) const {
+    // $D: the test's folder; $O: the output path the test passes with -o.
+    std::string substitute(std::string args, const std::filesystem::path& out) const {
         for (std::size_t at; (at = args.find("$D")) != std::string::npos;) args.replace(at, 2, dir.path().string());
+        for (std::size_t at; (at = args.find("$O")) != std::string::npos;) args.replace(at, 2, out.string());
         return args;
     }
     TempDir dir;
@@ -38,7 +43,7 @@ protected:
 TEST_P(RenderErrors, OneLineNonZeroExitNoOutput) {
     const BadInputCase& c = GetParam();
     const auto out = dir / "out.exr";
-    const CommandResult r = runWeft("render " + substitute(c.args) + " -o " + out.string());
+    const CommandResult r = runWeft("render " + substitute(c.args, out) + " -o " + out.string());
     EXPECT_NE(r.status, 0) << r.output;
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
@@ -50,7 +55,7 @@ TEST_P(RenderErrors, ExistingOutputIsLeftUntouched) {
     const BadInputCase& c = GetParam();
     const auto out = dir / "keep.exr";
     writeText(out, "precious user file");
-    const CommandResult r = runWeft("render " + substitute(c.args) + " -o " + out.string());
+    const CommandResult r = runWeft("render " + substitute(c.args, out) + " -o " + out.string());
     EXPECT_NE(r.status, 0);
     EXPECT_EQ(readBytes(out), "precious user file");
     for (const auto& e : std::filesystem::directory_iterator(dir.path()))
@@ -75,6 +80,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"UnknownSceneKey", "$D/bad.json", "bad.json:3:3: unknown key 'camra' in scene; valid keys: camera"},
         BadInputCase{"SceneSyntax", "$D/syntax.json", "syntax.json:4:3: JSON syntax error"},
         BadInputCase{"SceneValueRange", "$D/range.json", "range.json:2:56: volume.resolution = 2 is outside [4, 1024]"},
+        BadInputCase{"StatsOverwritesOutput", "builtin:sphere --res 8x8 --stats $O", "--stats names the same file as -o"},
+        BadInputCase{"PreviewOverwritesStats", "builtin:sphere --res 8x8 --preview $D/p.png --stats $D/p.png", "--stats names the same file as --preview"},
+        BadInputCase{"MeshesDroppedByVolumeTechnique", "$D/mixed.json",
+                     "volume.raymarch renders volumes, and the scene '"},
+        BadInputCase{"VolumesDroppedByMeshTechnique", "$D/mixed.json --technique lighting.vpl_deferred",
+                     "also has 1 volume it would drop"},
         BadInputCase{"BadSpp", "builtin:sphere --spp 0", "--spp 0 is outside"},
         BadInputCase{"OutputFolderMissing", "builtin:sphere --res 8x8 --preview $D/nofolder/p.png", "folder '"}),
     [](const auto& info) { return std::string(info.param.name); });

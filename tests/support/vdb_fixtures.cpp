@@ -14,4 +14,13 @@ void writeProceduralVdb(const std::filesystem::path& path, const std::string& ki
     file.close();
 }
 
+void writeEmptyVdb(const std::filesystem::path& path) {
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    openvdb::io::File file(path.string());
+    file.write({grid});
+    file.close();
+}
+
 }  // namespace weft::test

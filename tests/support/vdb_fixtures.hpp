@@ -9,4 +9,7 @@ namespace weft::test {
 void writeProceduralVdb(const std::filesystem::path& path, const std::string& kind, int res,
                         const std::string& gridName = "density");
 
+// A density grid with no active voxel (the first frame of a simulation cache).
+void writeEmptyVdb(const std::filesystem::path& path);
+
 }  // namespace weft::test

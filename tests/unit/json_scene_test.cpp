@@ -70,7 +70,7 @@ TEST(SceneLoader, ReadsCameraVolumesLightsAndRenderSettings) {
 
 TEST(SceneLoader, ErrorsPointAtFileLineColumn) {
     EXPECT_EQ(sceneError("{\"volumes\": [{\"procedural\": \"sphere\", \"resolutoin\": 8}]}"),
-              "s.json:1:39: unknown key 'resolutoin' in volume; valid keys: file, grid, procedural, resolution, seed, transfer_function");
+              "s.json:1:39: unknown key 'resolutoin' in volume; valid keys: file, grid, medium, procedural, resolution, rotate, scale, seed, transfer_function, translate");
     EXPECT_EQ(sceneError("{\n\"camera\": {\"fov\": 200}}"), "s.json:2:19: camera.fov = 200 is outside [0.01, 179]");
     EXPECT_EQ(sceneError("{\"volumes\": [{\"procedural\": \"torus\"}]}"),
               "s.json:1:29: unknown procedural volume 'torus' (known: sphere|cloud)");
@@ -84,4 +84,51 @@ TEST(SceneLoader, VolumeFilesAreRelativeToTheSceneAndErrorsNameThem) {
     const std::string msg = sceneError("{\"volumes\": [{\"file\": \"missing.vdb\"}]}");
     EXPECT_NE(msg.find("s.json:1:23: volume '"), std::string::npos) << msg;
     EXPECT_NE(msg.find("missing.vdb': no such file"), std::string::npos) << msg;
+}
+
+TEST(SceneLoader, PlacementComposesWithTheGridTransform) {
+    test::TempDir dir;
+    test::writeText(dir / "s.json", R"({"volumes": [
+        {"procedural": "sphere", "resolution": 16},
+        {"procedural": "sphere", "resolution": 16, "scale": [1, 2, 1], "rotate": [0, 0, 90], "translate": [3, 0, 0]}]})");
+    const Scene scene = loadScene((dir / "s.json").string(), 1.0);
+    ASSERT_EQ(scene.volumes.size(), 2u);
+    const BBoxd plain = scene.volumes[0].worldBox(), moved = scene.volumes[1].worldBox();
+    // Scaled 2x along y, then turned 90 degrees about z: the long axis lies along x.
+    EXPECT_NEAR(moved.extents().x(), 2 * plain.extents().y(), 1e-9);
+    EXPECT_NEAR(moved.extents().y(), plain.extents().x(), 1e-9);
+    EXPECT_NEAR(moved.getCenter().x() - plain.getCenter().x(), 3.0, 1e-9);
+    EXPECT_NEAR(scene.volumes[1].voxelLength(), std::cbrt(2.0) * scene.volumes[0].voxelLength(), 1e-12);
+    // The grid is shared, not copied.
+    EXPECT_EQ(scene.volumes[1].valueMax, scene.volumes[0].valueMax);
+}
+
+TEST(SceneLoader, MediumIsReadAndChecked) {
+    test::TempDir dir;
+    test::writeText(dir / "s.json", R"({"volumes": [{"procedural": "sphere", "resolution": 8,
+        "medium": {"absorb": [0.5, 0.25, 0], "scatter": [2, 2, 2], "g": 0.3}}]})");
+    const Scene scene = loadScene((dir / "s.json").string(), 1.0);
+    const VolumeMedium& m = scene.volumes[0].medium;
+    EXPECT_TRUE(m.fromScene);
+    EXPECT_EQ(m.absorb, Vec3d(0.5, 0.25, 0));
+    EXPECT_EQ(m.scatter, Vec3d(2, 2, 2));
+    EXPECT_DOUBLE_EQ(m.g, 0.3);
+    EXPECT_NE(sceneError(R"({"volumes": [{"procedural": "sphere", "medium": {"absorb": [-1, 0, 0]}}]})")
+                  .find("medium.absorb must be three numbers >= 0"), std::string::npos);
+    EXPECT_NE(sceneError(R"({"volumes": [{"procedural": "sphere", "medium": {"g": 1}}]})").find("medium.g = 1 is outside"),
+              std::string::npos);
+    EXPECT_NE(sceneError(R"({"volumes": [{"procedural": "sphere", "scale": [1, 0, 1]}]})").find("scale must be positive"),
+              std::string::npos);
+}
+
+TEST(SceneLoader, MeshesTakeTheSamePlacement) {
+    test::TempDir dir;
+    test::writeText(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    test::writeText(dir / "s.json", R"({"meshes": [{"file": "tri.obj", "scale": 2, "rotate": [0, 0, 90], "translate": [0, 0, 5]}]})");
+    const Scene scene = loadScene((dir / "s.json").string(), 1.0);
+    const BBoxd box = scene.worldBox();
+    // (1, 0) -> (2, 0) -> (0, 2); (0, 1) -> (0, 2) -> (-2, 0).
+    EXPECT_NEAR(box.min().x(), -2, 1e-6);
+    EXPECT_NEAR(box.max().y(), 2, 1e-6);
+    EXPECT_NEAR(box.min().z(), 5, 1e-6);
 }
