@@ -53,13 +53,28 @@ double cloudDensity(std::uint64_t seed, const Vec3d& p) {
     return std::clamp(shell * 9.0, 0.0, 1.0) * std::clamp(detail * 1.6 - 0.15, 0.0, 1.0);
 }
 
+// A CT-like phantom in normalised attenuation: soft tissue (an ellipsoid,
+// 0.3, with faint texture), a denser vessel wall around an empty lumen along
+// x (where a stent tube can run), and a bone-like shell (1.0) on one side.
+double ctDensity(std::uint64_t seed, const Vec3d& p) {
+    const double body = (p.x() * p.x()) / 0.20 + (p.y() * p.y()) / 0.09 + (p.z() * p.z()) / 0.12;
+    if (body > 1.0) return 0.0;
+    const double radial = std::sqrt(p.y() * p.y() + p.z() * p.z());
+    if (radial < 0.05) return 0.02;                        // lumen: blood, nearly clear
+    if (radial < 0.08) return 0.6;                         // vessel wall
+    const Vec3d b = p - Vec3d(0.0, -0.12, 0.05);
+    const double bone = std::abs(b.length() - 0.11);
+    if (bone < 0.025) return 1.0;                          // cortical shell
+    return 0.3 * (0.85 + 0.15 * fbm(seed, p * 12.0));    // soft tissue
+}
+
 }  // namespace
 
-const char* proceduralKinds() { return "sphere|cloud"; }
+const char* proceduralKinds() { return "sphere|cloud|ct"; }
 
 openvdb::FloatGrid::Ptr makeProceduralGrid(const std::string& kind, int res, std::uint64_t seed) {
     initVdb();
-    if (kind != "sphere" && kind != "cloud")
+    if (kind != "sphere" && kind != "cloud" && kind != "ct")
         throw Error("unknown procedural volume '" + kind + "' (known: " + proceduralKinds() + ")");
     if (res < 4 || res > 1024) throw Error("procedural volume resolution " + std::to_string(res) + " is outside [4, 1024]");
     auto grid = openvdb::FloatGrid::create(0.0f);
@@ -73,7 +88,7 @@ openvdb::FloatGrid::Ptr makeProceduralGrid(const std::string& kind, int res, std
         for (int y = -half; y < half; ++y)
             for (int x = -half; x < half; ++x) {
                 const Vec3d p(x * voxel, y * voxel, z * voxel);
-                const double d = kind == "sphere" ? sphereDensity(p) : cloudDensity(seed, p);
+                const double d = kind == "sphere" ? sphereDensity(p) : kind == "ct" ? ctDensity(seed, p) : cloudDensity(seed, p);
                 if (d > 0) acc.setValue(openvdb::Coord(x, y, z), float(d));
             }
     return grid;

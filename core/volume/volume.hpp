@@ -68,7 +68,9 @@ void computeStatistics(Volume& volume);
 // the object fills the unit cube [-0.5, 0.5]^3 in world space:
 //   "sphere": constant density 1 inside radius 0.4 (closed-form transmittance)
 //   "cloud":  a sphere displaced and modulated by fractal value noise
+//   "ct":     a CT-like phantom: soft tissue, a vessel with an open lumen
+//             along x, a bone-like shell (normalised attenuation, 0..1)
 openvdb::FloatGrid::Ptr makeProceduralGrid(const std::string& kind, int res, std::uint64_t seed);
-const char* proceduralKinds();  // "sphere|cloud", for error messages
+const char* proceduralKinds();  // "sphere|cloud|ct", for error messages
 
 }  // namespace weft
