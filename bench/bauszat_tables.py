@@ -175,7 +175,7 @@ def main():
     p.add_argument("--scenes", default="cornell,glossy,bunny")
     p.add_argument("--tables", default="mse,overhead")
     p.add_argument("--set", action="append", default=[], help="extra filter parameter for both filtered modes")
-    p.add_argument("--images", default="", help="write the README pictures of the Cornell box here")
+    p.add_argument("--images", default="", help="write the pictures of the Cornell box (docs/lighting.md) here")
     args = p.parse_args()
     os.makedirs(args.out, exist_ok=True)
     print("load average at start: %.2f %.2f %.2f (%d cores)" % (os.getloadavg() + (os.cpu_count(),)))

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Time at equal error: weft's volume.singlescatter against vdb_render.
 
-For each data set (the Gaffer smoke with the README's camera, and the
+For each data set (the Gaffer smoke with the camera of docs/volumes.md, and the
 aneurism) it renders one converged reference with vdb_render (step 0.125,
 shadowstep 0.25), then vdb_render at steps 1, 0.5, 0.25, 0.125 (shadowstep
 3, its default) and weft at a ladder of its own knobs (primary step, cache

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's pattern images (docs/images/periodograms*.png,
+# Regenerates docs/sampling.md's pattern images (docs/images/periodograms*.png,
 # zoneplate_strip.png, motion_blur_strip.png) and docs/sampling_report.csv with build/bin/weft and
 # oiiotool. Usage: scripts/pattern_images.sh [--threads N]
 set -euo pipefail

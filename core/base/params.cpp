@@ -45,6 +45,18 @@ std::string ParamSpec::allowedText() const {
     return "any";
 }
 
+std::string ParamSpec::allowedMarkdown() const {
+    std::string out;
+    switch (type) {
+        case ParamType::Bool: return "`true`, `false`";
+        case ParamType::Enum:
+            for (const auto& c : choices) out += (out.empty() ? "`" : ", `") + c + "`";
+            return out;
+        case ParamType::String: return "text";
+        default: return allowedText();
+    }
+}
+
 ParamSpec floatParam(std::string name, double def, double min, double max, std::string doc) {
     return {std::move(name), ParamType::Float, formatNumber(def), min, max, {}, std::move(doc)};
 }
@@ -148,6 +160,24 @@ std::string ParamTable::helpText() const {
         out += line;
     }
     return out.empty() ? "  (no parameters)\n" : out;
+}
+
+// Text for one Markdown table cell: a '|' would end the cell.
+static std::string markdownCell(const std::string& text) {
+    std::string out;
+    for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
+}
+
+std::string ParamTable::markdownTable() const {
+    if (specs_.empty()) return "No parameters.\n";
+    std::string out = "| parameter | type | default | allowed | meaning |\n|---|---|---|---|---|\n";
+    for (const ParamSpec& s : specs_) {
+        const std::string def = s.defaultValue.empty() ? "(empty)" : "`" + markdownCell(s.defaultValue) + "`";
+        out += "| `" + s.name + "` | " + paramTypeName(s.type) + " | " + def + " | " +
+               markdownCell(s.allowedMarkdown()) + " | " + markdownCell(s.doc) + " |\n";
+    }
+    return out;
 }
 
 const ParamSet::Value& ParamSet::find(const std::string& name, ParamType expected) const {

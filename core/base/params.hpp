@@ -30,6 +30,8 @@ struct ParamSpec {
 
     // The allowed values as a user reads them: "[0.001, 64]", "one of a|b".
     std::string allowedText() const;
+    // The same for a Markdown table cell: "[0.001, 64]", "`a`, `b`".
+    std::string allowedMarkdown() const;
 };
 
 // Builders that keep plugin tables short and readable.
@@ -75,6 +77,8 @@ public:
     const std::string& owner() const { return owner_; }
     // Human-readable documentation, one parameter per line.
     std::string helpText() const;
+    // The same as a Markdown table: name, type, default, allowed values, meaning.
+    std::string markdownTable() const;
 
 private:
     std::string owner_;

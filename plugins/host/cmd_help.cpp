@@ -1,6 +1,13 @@
-// weft help [NAME]: a technique's summary and parameter table, generated from
-// the same table that validates its parameters.
+// weft help [NAME] [--markdown]: a technique's summary and parameter table,
+// generated from the same table that validates its parameters. --markdown
+// prints the section docs/techniques/NAME.md holds between its
+// "<!-- BEGIN weft help NAME --markdown -->" and "<!-- END ... -->" lines
+// (scripts/gen-docs.sh writes it there; tests/cli/docs_test.cpp checks it).
 #include <cstdio>
+#include <memory>
+#include <string>
+
+#include "core/base/error.hpp"
 
 #include "plugins/host/command.hpp"
 #include "plugins/technique.hpp"
@@ -9,21 +16,43 @@ namespace weft {
 
 namespace {
 
-void printHelp(const std::string& name) {
-    if (name.empty()) {
-        std::printf("techniques (weft help NAME for parameters):\n");
-        for (const TechniqueInfo* t : techniques().all()) std::printf("  %-28s %s\n", t->name.c_str(), t->summary.c_str());
-        return;
-    }
-    const TechniqueInfo& t = techniques().get(name);
+void printList() {
+    std::printf("techniques (weft help NAME for parameters):\n");
+    for (const TechniqueInfo* t : techniques().all()) std::printf("  %-28s %s\n", t->name.c_str(), t->summary.c_str());
+}
+
+void printText(const TechniqueInfo& t) {
     std::printf("%s: %s\n\nparameters (--set key=value):\n%s", t.name.c_str(), t.summary.c_str(), t.params.helpText().c_str());
+}
+
+void printMarkdown(const TechniqueInfo& t) {
+    const bool stop = !t.summary.empty() && t.summary.back() == '.';
+    std::printf("## Parameters of `%s`\n\n%s%s\n\n", t.name.c_str(), t.summary.c_str(), stop ? "" : ".");
+    std::printf("Set with `--set key=value` or in a scene file's `render.params`; `weft help %s` prints the same.\n\n",
+                t.name.c_str());
+    std::printf("%s", t.params.markdownTable().c_str());
+}
+
+struct HelpOptions {
+    std::string name;
+    bool markdown = false;
+};
+
+void printHelp(const HelpOptions& o) {
+    if (o.name.empty()) {
+        if (o.markdown) throw Error("weft help --markdown needs a technique name (weft help lists them)");
+        return printList();
+    }
+    const TechniqueInfo& t = techniques().get(o.name);
+    o.markdown ? printMarkdown(t) : printText(t);
 }
 
 const CommandRegistrar registrar{{"help", 90, [](CLI::App& app) {
     auto* cmd = app.add_subcommand("help", "describe a technique and its parameters");
-    auto name = std::make_shared<std::string>();
-    cmd->add_option("name", *name, "technique name (omit to list them)");
-    cmd->callback([name] { printHelp(*name); });
+    auto o = std::make_shared<HelpOptions>();
+    cmd->add_option("name", o->name, "technique name (omit to list them)");
+    cmd->add_flag("--markdown", o->markdown, "print the parameter section of docs/techniques/NAME.md");
+    cmd->callback([o] { printHelp(*o); });
 }}};
 
 }  // namespace

@@ -69,3 +69,16 @@ TEST(Params, HelpTextListsEveryParameterWithRange) {
     for (const char* s : {"step", "count", "jitter", "mode", "[1, 16]", "one of a|b"})
         EXPECT_NE(help.find(s), std::string::npos) << s;
 }
+
+TEST(Params, MarkdownTableHasOneRowPerParameterAndEscapesBars) {
+    const ParamTable t("demo", {floatParam("step", 0.5, 1e-4, 64, "step in voxels"), boolParam("jitter", false, "a|b"),
+                                enumParam("mode", "a", {"a", "b"}, "mode"), stringParam("pattern", "", "spec")});
+    EXPECT_EQ(t.markdownTable(),
+              "| parameter | type | default | allowed | meaning |\n"
+              "|---|---|---|---|---|\n"
+              "| `step` | float | `0.5` | [1e-04, 64] | step in voxels |\n"
+              "| `jitter` | bool | `false` | `true`, `false` | a\\|b |\n"
+              "| `mode` | enum | `a` | `a`, `b` | mode |\n"
+              "| `pattern` | string | (empty) | text | spec |\n");
+    EXPECT_EQ(ParamTable("none", {}).markdownTable(), "No parameters.\n");
+}
