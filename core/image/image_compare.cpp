@@ -8,6 +8,16 @@
 
 namespace weft {
 
+std::string regressionVerdict(const ImageComparison& c, const RegressionRule& rule) {
+    const double fraction = c.pixels ? double(c.pixelsAbove) / double(c.pixels) : 0.0;
+    if (fraction > rule.failFraction)
+        return std::to_string(c.pixelsAbove) + " of " + std::to_string(c.pixels) + " pixels differ by more than " +
+               std::to_string(rule.threshold) + " (allowed fraction " + std::to_string(rule.failFraction) + ")";
+    if (!(c.overall.maxAbs <= rule.hardFail))
+        return "a pixel differs by " + std::to_string(c.overall.maxAbs) + ", above the hard limit " + std::to_string(rule.hardFail);
+    return "";
+}
+
 namespace {
 
 double psnrFromMse(double mse) {

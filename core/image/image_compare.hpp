@@ -32,4 +32,16 @@ struct ImageComparison {
 // differ or they share no channel. threshold: the per-pixel failure level.
 ImageComparison compareImages(const Image& test, const Image& reference, double threshold = 0.004);
 
+// The pass rule of an image regression (OpenImageIO's testsuite): fail when
+// more than failFraction of the pixels differ by more than threshold, or any
+// pixel by more than hardFail. Stored beside each reference, so the test and
+// its run script (weft diff --rule) judge alike.
+struct RegressionRule {
+    double threshold = 0.004;
+    double failFraction = 0.02;
+    double hardFail = 0.012;
+};
+// Empty when the comparison passes, else why it fails, in one line.
+std::string regressionVerdict(const ImageComparison& c, const RegressionRule& rule);
+
 }  // namespace weft

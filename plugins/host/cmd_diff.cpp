@@ -2,9 +2,11 @@
 // overall. --fail RMSE exits 2 when the overall RMSE is above it.
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "core/image/image_compare.hpp"
 #include "core/image/image_io.hpp"
+#include "core/image/regression_case.hpp"
 #include "plugins/host/command.hpp"
 
 namespace weft {
@@ -15,6 +17,7 @@ struct DiffOptions {
     std::string test, reference;
     double failRmse = -1;
     double threshold = 0.004;
+    std::string rule;  // a regression case.json: its pass rule decides
 };
 
 void printRow(const ChannelError& c) {
@@ -23,7 +26,8 @@ void printRow(const ChannelError& c) {
 
 void runDiff(const DiffOptions& o) {
     const Image a = readImage(o.test), b = readImage(o.reference);
-    const ImageComparison cmp = compareImages(a, b, o.threshold);
+    const std::optional<RegressionRule> rule = o.rule.empty() ? std::nullopt : std::optional(readRegressionCase(o.rule).rule);
+    const ImageComparison cmp = compareImages(a, b, rule ? rule->threshold : o.threshold);
     std::printf("%-12s %12s %12s %10s %9s %12s\n", "channel", "RMSE", "relMSE", "PSNR", "SSIM", "maxAbs");
     for (const ChannelError& c : cmp.channels) printRow(c);
     printRow(cmp.overall);
@@ -32,6 +36,10 @@ void runDiff(const DiffOptions& o) {
     if (o.failRmse >= 0 && !(cmp.overall.rmse <= o.failRmse)) {
         std::printf("FAIL: RMSE %.6g above %.6g\n", cmp.overall.rmse, o.failRmse);
         commandExitStatus() = 2;
+    }
+    if (rule) {
+        const std::string verdict = regressionVerdict(cmp, *rule);
+        if (!verdict.empty()) std::printf("FAIL: %s\n", verdict.c_str()), commandExitStatus() = 2;
     }
 }
 
@@ -42,6 +50,7 @@ const CommandRegistrar registrar{{"diff", 20, [](CLI::App& app) {
     cmd->add_option("reference", o->reference, "reference image")->required();
     cmd->add_option("--fail", o->failRmse, "exit 2 when the overall RMSE is above this")->check(CLI::NonNegativeNumber);
     cmd->add_option("--threshold", o->threshold, "per-pixel error counted as a difference")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--rule", o->rule, "a regression case.json whose pass rule decides (exit 2 on failure)");
     cmd->callback([o] { runDiff(*o); });
 }}};
 
