@@ -1,6 +1,9 @@
 // weft render INPUT -o OUT.exr [options]: one frame, a frame range
 // (--frames, names with # or @) or one tile of a frame (--tile i/n).
 // Without -o the image goes to chained steps (see chain.hpp).
+#include <optional>
+
+#include "core/base/error.hpp"
 #include "core/base/frames.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/chain.hpp"
@@ -12,12 +15,17 @@ namespace {
 
 struct RenderCommand {
     RenderRequest request;
-    std::string frames;
+    std::optional<std::string> frames;
 };
 
+// Checks what every frame shares once, so a bad option fails at once
+// instead of once per frame.
 std::vector<RenderRequest> requestsOf(const RenderCommand& c) {
-    if (c.frames.empty()) return {c.request};
-    return requestsForFrames(c.request, parseFrameRange(c.frames));
+    validateRequest(c.request);
+    if (!c.frames) return {c.request};
+    if (c.frames->find_first_not_of(" \t") == std::string::npos)
+        throw Error("--frames is empty: give frames such as 1001-1100, 1,3,5-9 or 7");
+    return requestsForFrames(c.request, parseFrameRange(*c.frames));
 }
 
 const CommandRegistrar registrar{{"render", 10, [](CLI::App& app) {

@@ -137,9 +137,23 @@ int effectiveThreads(int requested) {
 
 }  // namespace
 
+constexpr int kMaxThreads = 4096;
+
+void validateRequest(const RenderRequest& r) {
+    if (!r.tile.empty()) parseTileSpec(r.tile);
+    if (r.threads < 0 || r.threads > kMaxThreads)
+        throw Error("--threads " + std::to_string(r.threads) + " is outside [0, " + std::to_string(kMaxThreads) + "] (0 = all cores)");
+    if (r.resolution) parseResolution(*r.resolution);
+    std::map<std::string, std::string> given;
+    for (const std::string& kv : r.sets) given.insert(splitKeyValue(kv, "--set"));
+    // Scene files, meshes and built-in scenes may name a technique of their
+    // own: their parameters are checked once the scene is loaded.
+    const bool bareVdb = r.input.size() > 4 && r.input.compare(r.input.size() - 4, 4, ".vdb") == 0;
+    if (r.technique || bareVdb) techniques().get(r.technique.value_or(defaultTechnique(r.sets))).params.parse(given);
+}
+
 RenderOutcome renderToImage(const RenderRequest& r) {
-    if (!r.tile.empty()) parseTileSpec(r.tile);  // a bad spec fails before the scene loads
-    if (r.threads < 0) throw Error("--threads must be >= 0 (0 = all cores)");
+    validateRequest(r);  // cheap checks fail before the scene loads
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
     RenderContext ctx;
     std::optional<double> aspect;

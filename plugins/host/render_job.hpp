@@ -40,6 +40,11 @@ struct RenderOutcome {
     std::vector<std::pair<std::string, double>> timingsMs;
 };
 
+// Checks what does not depend on the scene or the frame (resolution, tile,
+// threads, outputs, and --set against the technique's table when the
+// technique is known without loading the scene); throws on the first problem.
+void validateRequest(const RenderRequest& request);
+
 // Renders without writing anything (tests and chains use this directly).
 RenderOutcome renderToImage(const RenderRequest& request);
 // Renders and writes the requested files (the EXR only when output is set);

@@ -86,6 +86,10 @@ INSTANTIATE_TEST_SUITE_P(
                      "volume.raymarch renders volumes, and the scene '"},
         BadInputCase{"VolumesDroppedByMeshTechnique", "$D/mixed.json --technique lighting.vpl_deferred",
                      "also has 1 volume it would drop"},
+        BadInputCase{"EmptyFrames", "builtin:sphere --res 8x8 --frames ''", "--frames is empty"},
+        BadInputCase{"HugeThreadCount", "builtin:sphere --res 8x8 --threads 2147483647", "--threads 2147483647 is outside [0, 4096]"},
+        BadInputCase{"BadSetFailsOnceForAllFrames", "builtin:sphere --technique volume.raymarch --res 8x8 --frames 1-1000000 --set stpe=1",
+                     "unknown parameter 'stpe'"},
         BadInputCase{"BadSpp", "builtin:sphere --spp 0", "--spp 0 is outside"},
         BadInputCase{"OutputFolderMissing", "builtin:sphere --res 8x8 --preview $D/nofolder/p.png", "folder '"}),
     [](const auto& info) { return std::string(info.param.name); });
