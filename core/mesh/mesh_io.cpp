@@ -9,8 +9,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 #include "core/mesh/mesh.hpp"
 
 namespace fs = std::filesystem;
@@ -82,7 +84,18 @@ PolyMesh readObj(const std::string& path) {
     return out;
 }
 
+// Assimp spins on a header cut short: the header must be whole before it reads.
+void checkPlyHeader(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    if (!std::getline(in, line) || line.rfind("ply", 0) != 0) fail(path, "is not a PLY file (no 'ply' on its first line)");
+    for (int n = 0; n < 10000 && std::getline(in, line); ++n)
+        if (line.rfind("end_header", 0) == 0) return;
+    fail(path, "its PLY header has no end_header line (the file is cut short or not PLY)");
+}
+
 PolyMesh readPly(const std::string& path) {
+    checkPlyHeader(path);
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
     if (!scene) fail(path, oneLine(importer.GetErrorString()));
@@ -126,7 +139,7 @@ std::string lowerExtension(const std::string& path) {
 }  // namespace
 
 PolyMesh readPolyMesh(const std::string& path) {
-    if (!fs::is_regular_file(path)) fail(path, "no such file");
+    requireRegularFile(path, "mesh");
     const std::string ext = lowerExtension(path);
     PolyMesh mesh;
     if (ext == ".obj") mesh = readObj(path);

@@ -6,6 +6,7 @@
 
 #include "core/sampling/analytic2d.hpp"
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 #include "core/base/frames.hpp"
 #include "core/base/json_doc.hpp"
 #include "core/base/params.hpp"
@@ -418,7 +419,7 @@ Scene loadScene(const std::string& input, std::optional<double> aspect, const st
     if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0), gridName);
     if (ext == ".obj" || ext == ".ply") return loadBareMesh(input, aspect.value_or(1.0));
     if (ext == ".json") {
-        if (!fs::exists(input)) throw Error("scene '" + input + "': no such file");
+        requireRegularFile(input, "scene");
         return loadJsonScene(input, aspect, frame);
     }
     throw Error("input '" + input + "': expected a scene .json, a .vdb, .obj or .ply file or " + builtinSceneNames());

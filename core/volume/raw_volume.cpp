@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 #include "core/volume/volume.hpp"
 
 namespace fs = std::filesystem;
@@ -153,12 +154,7 @@ openvdb::math::Transform::Ptr spacingTransform(const openvdb::Vec3d& s) {
     return std::make_shared<openvdb::math::Transform>(std::make_shared<openvdb::math::ScaleMap>(s));
 }
 
-void checkInputFile(const std::string& path) {
-    std::error_code ec;
-    const fs::file_status st = fs::status(path, ec);
-    if (!fs::exists(st)) throw Error(path + ": no such file");
-    if (fs::is_directory(st)) throw Error(path + ": is a folder, not a raw volume file");
-}
+void checkInputFile(const std::string& path) { requireRegularFile(path, "raw volume"); }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 
 namespace weft {
 
@@ -60,11 +61,11 @@ BBoxd Volume::worldBox() const {
 
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {
     initVdb();
-    if (!std::filesystem::exists(path)) throw Error("volume '" + path + "': no such file");
+    requireRegularFile(path, "volume");
     openvdb::io::File file(path);
     try {
         file.open(false);
-    } catch (const openvdb::Exception&) {
+    } catch (const std::exception&) {  // OpenVDB's own text can hold raw bytes of the file
         throw Error("volume '" + path + "': not an OpenVDB file");
     }
     std::string names, chosen;
@@ -75,7 +76,14 @@ openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string
     if (!gridName.empty()) chosen = gridName;
     if (chosen.empty() || !file.hasGrid(chosen))
         throw Error("volume '" + path + "': no grid named '" + chosen + "' (grids: " + (names.empty() ? "none" : names) + ")");
-    openvdb::GridBase::Ptr base = file.readGrid(chosen);
+    openvdb::GridBase::Ptr base;
+    try {
+        base = file.readGrid(chosen);
+    } catch (const std::bad_alloc&) {
+        throw Error("volume '" + path + "': grid '" + chosen + "' does not fit in memory (or its header is corrupt)");
+    } catch (const std::exception&) {
+        throw Error("volume '" + path + "': grid '" + chosen + "' cannot be read: the file is corrupt or cut short");
+    }
     auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
     if (!grid) throw Error("volume '" + path + "': grid '" + chosen + "' holds " + base->valueType() + " values; weft renders float grids");
     if (!grid->transform().isLinear()) throw Error("volume '" + path + "': grid '" + chosen + "' has a non-linear (frustum) transform, which weft does not support");

@@ -174,7 +174,7 @@ TEST(ConvertCli, ListedInHelp) {
 }
 
 TEST_F(ConvertError, MissingInput) {
-    expectFailure(in("none.raw") + " --dims 2,2,2 --type u8", in("none.raw") + ": no such file");
+    expectFailure(in("none.raw") + " --dims 2,2,2 --type u8", "raw volume '" + in("none.raw") + "': no such file");
 }
 
 TEST_F(ConvertError, SizeMismatchNamesBothNumbers) {

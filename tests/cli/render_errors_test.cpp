@@ -2,6 +2,8 @@
 // output file created, and an existing file at the output path untouched.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 
 #include "tests/support/test_support.hpp"
@@ -26,6 +28,14 @@ protected:
         writeText(dir / "notvdb.vdb", "this is not a vdb file\n");
         writeText(dir / "bad.json", "{\n  \"volumes\": [ { \"procedural\": \"sphere\", \"resolution\": 16 } ],\n  \"camra\": {}\n}\n");
         writeText(dir / "syntax.json", "{\n  \"volumes\": [\n    { \"procedural\": \"sphere\" },\n  ]\n}\n");
+        writeText(dir / "cut.ply", "ply\nformat ascii 1.0\nelement vertex 3\nprop");
+        std::filesystem::create_directory(dir / "folder.obj");
+        mkfifo((dir / "pipe.vdb").c_str(), 0600);
+        writeProceduralVdb(dir / "whole.vdb", "cloud", 32);
+        {  // a VDB cut in the middle of its grid data
+            const std::string bytes = readBytes(dir / "whole.vdb");
+            writeText(dir / "cut.vdb", bytes.substr(0, bytes.size() / 2));
+        }
         writeText(dir / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
         writeText(dir / "mixed.json", "{\"volumes\": [{\"procedural\": \"sphere\", \"resolution\": 8}],\n"
                                       " \"meshes\": [{\"file\": \"tri.obj\"}, {\"file\": \"tri.obj\", \"translate\": [0, 0, -1]}]}\n");
@@ -90,6 +100,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"HugeThreadCount", "builtin:sphere --res 8x8 --threads 2147483647", "--threads 2147483647 is outside [0, 4096]"},
         BadInputCase{"BadSetFailsOnceForAllFrames", "builtin:sphere --technique volume.raymarch --res 8x8 --frames 1-1000000 --set stpe=1",
                      "unknown parameter 'stpe'"},
+        BadInputCase{"PlyHeaderCutShort", "$D/cut.ply --res 8x8", "its PLY header has no end_header line"},
+        BadInputCase{"FolderAsMesh", "$D/folder.obj --res 8x8", "is a directory, not a file"},
+        BadInputCase{"FifoAsVolume", "$D/pipe.vdb --res 8x8", "is a FIFO (named pipe)"},
+        BadInputCase{"DeviceAsMesh", "/dev/zero --res 8x8 --technique mesh.pathtrace", "expected a scene .json"},
+        BadInputCase{"VdbCutShort", "$D/cut.vdb --res 8x8", "cannot be read: the file is corrupt or cut short"},
         BadInputCase{"BadSpp", "builtin:sphere --spp 0", "--spp 0 is outside"},
         BadInputCase{"OutputFolderMissing", "builtin:sphere --res 8x8 --preview $D/nofolder/p.png", "folder '"}),
     [](const auto& info) { return std::string(info.param.name); });

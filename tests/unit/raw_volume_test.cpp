@@ -171,7 +171,7 @@ TEST(RawVolume, NonFiniteFloatsAreRejectedWithTheirVoxel) {
 TEST(RawVolume, MissingFileAndCorruptGzip) {
     TempDir dir;
     const std::string missing = (dir / "none.raw").string();
-    EXPECT_EQ(errorOf([&] { readRawVolume(missing, specOf(Coord(1, 1, 1), RawType::U8)); }), missing + ": no such file");
+    EXPECT_EQ(errorOf([&] { readRawVolume(missing, specOf(Coord(1, 1, 1), RawType::U8)); }), "raw volume '" + missing + "': no such file");
     writeBinary(dir / "plain.raw.gz", std::string(8, '\1'));
     EXPECT_NE(errorOf([&] { readRawVolume((dir / "plain.raw.gz").string(), specOf(Coord(2, 2, 2), RawType::U8)); })
                   .find("not gzip data"),
