@@ -1,7 +1,9 @@
 #pragma once
 // Writing outputs without ever leaving a partial file: write to a temporary
 // name in the destination folder, then rename over the final name (atomic on
-// POSIX). A failed or interrupted write never touches an existing file.
+// POSIX). A failed or interrupted write never touches an existing file, and
+// a temporary file left by a process that died (SIGKILL, power loss) is
+// removed by the next write of the same output.
 #include <string>
 
 namespace weft {
@@ -21,7 +23,12 @@ private:
     std::string final_;
     std::string temp_;
     bool committed_ = false;
+    int slot_ = -1;  // in the table the interrupt handler cleans
 };
+
+// SIGINT and SIGTERM remove the temporary files being written, then end the
+// process as the signal would have. The host installs this once at start.
+void removeTemporaryOutputsOnInterrupt();
 
 // Fails early (before a long render) when the output cannot be written:
 // missing folder, or an extension no image writer handles.

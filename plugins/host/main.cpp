@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "core/base/atomic_file.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/chain.hpp"
 #include "plugins/plugin_api.hpp"
@@ -44,14 +45,17 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    weft::removeTemporaryOutputsOnInterrupt();
     try {
         return run(argc, argv);
     } catch (const weft::Error& e) {
-        std::fprintf(stderr, "weft: error: %s\n", e.what());
+        std::fprintf(stderr, "weft: error: %s\n", weft::printableLine(e.what()).c_str());
     } catch (const openvdb::Exception& e) {
-        std::fprintf(stderr, "weft: error: OpenVDB: %s\n", e.what());
+        std::fprintf(stderr, "weft: error: OpenVDB: %s\n", weft::printableLine(e.what()).c_str());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "weft: error: out of memory (try a smaller --res, fewer samples or a coarser grid)\n");
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "weft: error: %s\n", e.what());
+        std::fprintf(stderr, "weft: error: %s\n", weft::printableLine(e.what()).c_str());
     }
     return 1;
 }

@@ -253,7 +253,7 @@ int runRenders(const std::vector<RenderRequest>& requests, const AfterRender& af
         } catch (const std::exception& e) {
             ++failed;
             const std::string frame = q.frame ? "frame " + std::to_string(*q.frame) + ": " : "";
-            std::fprintf(stderr, "weft: error: %s%s\n", frame.c_str(), e.what());
+            std::fprintf(stderr, "weft: error: %s%s\n", frame.c_str(), printableLine(e.what()).c_str());
         }
     }
     if (failed && requests.size() > 1)

@@ -68,6 +68,33 @@ TEST(FarmFaults, KillDuringTheEXRWriteLeavesNoFileAtTheOutputName) {
     }
 }
 
+TEST(FarmFaults, TermAndIntRemoveTheTemporaryOutput) {
+    for (int sig : {SIGTERM, SIGINT}) {
+        TempDir dir;
+        const fs::path out = dir / "frame.exr";
+        const pid_t pid = startRender(out, "5000");
+        ASSERT_TRUE(waitForTemp(dir.path(), pid)) << "no temporary output appeared";
+        kill(pid, sig);
+        int status = 0;
+        waitpid(pid, &status, 0);
+        EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "ends as the signal would end it";
+        EXPECT_FALSE(tempFileIn(dir.path())) << "signal " << sig << " left the temporary file";
+        EXPECT_FALSE(fs::exists(out));
+    }
+}
+
+TEST(FarmFaults, StaleTemporaryOutputOfADeadProcessIsRemoved) {
+    TempDir dir;
+    // pids never reach 999999999 (Linux's pid_max is at most 2^22): its writer is gone.
+    writeText(dir / ".frame.weft-tmp-999999999.exr", "left by a killed render");
+    writeText(dir / ".other.weft-tmp-999999999.exr", "another output's: not ours to remove");
+    const auto r = runWeft("render builtin:sphere --res 8x8 -o " + (dir / "frame.exr").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_FALSE(fs::exists(dir / ".frame.weft-tmp-999999999.exr"));
+    EXPECT_TRUE(fs::exists(dir / ".other.weft-tmp-999999999.exr"));
+    EXPECT_TRUE(fs::exists(dir / "frame.exr"));
+}
+
 TEST(FarmFaults, KillAtAnyTimeLeavesNothingOrTheCompleteFrame) {
     TempDir ref;
     const auto t0 = std::chrono::steady_clock::now();

@@ -82,3 +82,11 @@ TEST(Params, MarkdownTableHasOneRowPerParameterAndEscapesBars) {
               "| `pattern` | string | (empty) | text | spec |\n");
     EXPECT_EQ(ParamTable("none", {}).markdownTable(), "No parameters.\n");
 }
+
+TEST(ErrorText, PrintableLineEscapesRawBytesAndKeepsUtf8) {
+    EXPECT_EQ(weft::printableLine("plain text"), "plain text");
+    EXPECT_EQ(weft::printableLine("two\nlines\tand tab"), "two lines and tab");
+    EXPECT_EQ(weft::printableLine(std::string("bytes \x01\x9f\xff end", 13)), "bytes \\x01\\x9F\\xFF end");
+    EXPECT_EQ(weft::printableLine("caf\xc3\xa9 \xe2\x82\xac"), "caf\xc3\xa9 \xe2\x82\xac");  // valid UTF-8 stays
+    EXPECT_EQ(weft::printableLine("cut \xe2\x82"), "cut \\xE2\\x82");                      // a cut sequence does not
+}
