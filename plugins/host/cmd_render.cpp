@@ -45,6 +45,7 @@ const CommandRegistrar registrar{{"render", 10, [](CLI::App& app) {
     cmd->add_option("--spp", r->spp, "camera samples per pixel");
     cmd->add_option("--seed", r->seed, "random seed (same seed, same image)");
     cmd->add_option("--threads", r->threads, "worker threads, 0 = all cores");
+    cmd->add_option("--max-memory", r->maxMemoryGiB, "refuse renders whose images need more than this many GiB (0 = 3/4 of physical memory)");
     cmd->add_flag("-v,--verbose", r->verbose, "print the counter table and timings");
     cmd->callback([c] { setChainRender(requestsOf(*c)); });
     cmd->immediate_callback();  // steps after it on the command line attach to it

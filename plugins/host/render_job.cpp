@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <unistd.h>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/frames.hpp"
@@ -139,11 +140,33 @@ int effectiveThreads(int requested) {
 
 constexpr int kMaxThreads = 4096;
 
+double physicalMemoryGiB() {
+    const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && size > 0 ? double(pages) * double(size) / double(1 << 30) : 16.0;
+}
+
+// The least a render of this size needs: the RGBA float image and the copy
+// written out. Refused before anything is allocated when it exceeds the limit.
+void checkMemory(const RenderRequest& r, int width, int height) {
+    const double limit = r.maxMemoryGiB > 0 ? r.maxMemoryGiB : 0.75 * physicalMemoryGiB();
+    const double need = double(width) * double(height) * 4 * sizeof(float) * 2 / double(1 << 30);
+    if (need > limit) {
+        char text[200];
+        std::snprintf(text, sizeof text, "a %dx%d render needs at least %.3g GiB for its image alone, above the %.3g GiB limit "
+                      "(--max-memory GiB; the default is 3/4 of physical memory)", width, height, need, limit);
+        throw Error(text);
+    }
+}
+
 void validateRequest(const RenderRequest& r) {
     if (!r.tile.empty()) parseTileSpec(r.tile);
     if (r.threads < 0 || r.threads > kMaxThreads)
         throw Error("--threads " + std::to_string(r.threads) + " is outside [0, " + std::to_string(kMaxThreads) + "] (0 = all cores)");
-    if (r.resolution) parseResolution(*r.resolution);
+    if (!(r.maxMemoryGiB >= 0 && r.maxMemoryGiB <= 1e6)) throw Error("--max-memory must be in [0, 1e6] GiB (0 = 3/4 of physical memory)");
+    if (r.resolution) {
+        const auto [w, h] = parseResolution(*r.resolution);
+        checkMemory(r, w, h);
+    }
     std::map<std::string, std::string> given;
     for (const std::string& kv : r.sets) given.insert(splitKeyValue(kv, "--set"));
     // Scene files, meshes and built-in scenes may name a technique of their
@@ -165,6 +188,7 @@ RenderOutcome renderToImage(const RenderRequest& r) {
     const Scene scene = loadScene(r.input, aspect, r.grid, r.frame);
     ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     ctx.settings = settingsFor(r, scene);
+    checkMemory(r, ctx.settings.width, ctx.settings.height);  // a scene file's own resolution
     RowBand band{0, ctx.settings.height};
     if (!r.tile.empty()) {
         const auto [index, count] = parseTileSpec(r.tile);

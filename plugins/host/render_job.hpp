@@ -30,6 +30,7 @@ struct RenderRequest {
     bool verbose = false;
     std::optional<int> frame;  // the frame a scene file is loaded at (names already expanded)
     std::string tile;          // "i/n": render only row band i of n (core/base/frames.hpp); "" = all
+    double maxMemoryGiB = 0;   // refuse renders whose images alone need more; 0 = 3/4 of physical memory
 };
 
 struct RenderOutcome {

@@ -105,6 +105,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"FifoAsVolume", "$D/pipe.vdb --res 8x8", "is a FIFO (named pipe)"},
         BadInputCase{"DeviceAsMesh", "/dev/zero --res 8x8 --technique mesh.pathtrace", "expected a scene .json"},
         BadInputCase{"VdbCutShort", "$D/cut.vdb --res 8x8", "cannot be read: the file is corrupt or cut short"},
+        BadInputCase{"ImageAboveMemory", "builtin:sphere --res 65536x65536", "needs at least 128 GiB for its image alone"},
+        BadInputCase{"ImageAboveMaxMemory", "builtin:sphere --res 1024x1024 --max-memory 0.01",
+                     "above the 0.01 GiB limit (--max-memory GiB"},
         BadInputCase{"BadSpp", "builtin:sphere --spp 0", "--spp 0 is outside"},
         BadInputCase{"OutputFolderMissing", "builtin:sphere --res 8x8 --preview $D/nofolder/p.png", "folder '"}),
     [](const auto& info) { return std::string(info.param.name); });
