@@ -225,6 +225,10 @@ void readMesh(const ObjectReader& r, const fs::path& baseDir, Scene& scene) {
     try {
         PolyMesh poly = readPolyMesh(file.string());
         transformMesh(poly, placement.matrix());
+        // Embree needs finite coordinates; a huge scale can overflow floats.
+        for (const Vec3f& v : poly.positions)
+            if (!(std::abs(v.x()) < 1e30f && std::abs(v.y()) < 1e30f && std::abs(v.z()) < 1e30f))
+                r.fail("scale", "the placed mesh has a vertex beyond 1e30 (is the scale or translate too large?)");
         scene.addMesh(subdivide(poly, level, file.string()));
     } catch (const Error& e) {
         r.fail("file", e.what());

@@ -121,6 +121,18 @@ TEST(SceneLoader, MediumIsReadAndChecked) {
               std::string::npos);
 }
 
+TEST(SceneLoader, PlacementThatOverflowsIsAnError) {
+    test::TempDir dir;
+    test::writeText(dir / "tri.obj", "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nf 1 2 3\n");
+    test::writeText(dir / "s.json", R"({"meshes": [{"file": "tri.obj", "scale": 1e10}]})");
+    try {
+        loadScene((dir / "s.json").string(), 1.0);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex beyond 1e30"), std::string::npos) << e.what();
+    }
+}
+
 TEST(SceneLoader, MeshesTakeTheSamePlacement) {
     test::TempDir dir;
     test::writeText(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
