@@ -10,6 +10,7 @@ std::optional<IndexRay> toIndexRay(const Ray& worldRay, const Volume& volume) {
     IndexRay ray;
     ray.origin = xf.worldToIndex(worldRay.origin);
     const Vec3d ahead = xf.worldToIndex(worldRay.origin + worldRay.dir);
+    ray.speed = (ahead - ray.origin).length();
     ray.dir = (ahead - ray.origin).unitSafe();
     const openvdb::CoordBBox box = volume.indexBox();
     double t0 = 0, t1 = std::numeric_limits<double>::max();

@@ -16,6 +16,7 @@ struct IndexRay {
     Vec3d origin;  // index space
     Vec3d dir;     // index space, unit length: t counts voxels
     double t0 = 0, t1 = 0;  // entry and exit of the volume's index box
+    double speed = 1;       // index units per unit of the world ray's parameter
     Vec3d at(double t) const { return origin + dir * t; }
 };
 

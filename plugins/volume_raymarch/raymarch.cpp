@@ -1,41 +1,54 @@
-// volume.raymarch — emission-absorption ray marching at a fixed step.
+// volume.raymarch — emission-absorption ray marching at a fixed step, through
+// every volume of the scene and up to the first surface.
 //
-// Each camera ray is clipped to the volume's index box and sampled every
-// `step` voxels with trilinear interpolation (OpenVDB BoxSampler); each
-// sample's transfer-function colour and extinction make a segment of opacity
-// 1 - exp(-extinction * step), composited front to back. With a very small
-// step this is the reference other volume techniques are measured against.
+// Each camera ray is clipped to each volume's index box and sampled every
+// `step` voxel lengths with trilinear interpolation (OpenVDB BoxSampler);
+// each sample's transfer-function colour and extinction make a segment of
+// opacity 1 - exp(-extinction * step), composited front to back. With a very
+// small step this is the reference other volume techniques are measured
+// against. Several volumes: the step is in voxel lengths of the finest
+// volume the ray crosses, and where volumes overlap their extinctions and
+// emissions add (volume_march.hpp states the rule).
+//
+// Meshes: a ray ends at its first surface (Embree); the last segment is cut
+// there and integrated with its true length. The surface is lit by the
+// scene's point and directional lights and emissive triangles with shadow
+// rays against the meshes (Lambert + Phong, core/lighting/brdf.hpp), adds its
+// own emission where seen from the front, and is composited behind the
+// volumes: colour = volume + transmittance x surface, alpha 1. The
+// emission-absorption volumes do not shadow the surfaces (their light is
+// their own emission, not scattered light).
 //
 // Parameters (see `weft help volume.raymarch`):
-//   step        distance between samples, in voxels (the speed/accuracy knob)
+//   step        distance between samples, in voxel lengths (the speed/accuracy knob)
 //   jitter      random offset of the first sample per ray (banding -> noise)
 //   ert         early ray termination once opacity reaches this (1 = off)
-//   skip_empty  skip regions without active voxels (OpenVDB HDDA); the image
-//               is unchanged, only fewer samples are taken
+//   skip_empty  skip regions without active voxels (OpenVDB HDDA on each
+//               grid's index space, so any affine transform works); the
+//               image is unchanged, only fewer samples are taken
 //   offset_pattern  per-pixel offsets of the first sample from a pattern set's
 //               third coordinate: interleaved:4x4 gives the 16 pixels of each
 //               tile 16 different strata of the step (Keller & Heidrich 4.3)
 //   pattern, filter, adaptive...  image-plane sampling and reconstruction
 //               (core/sampling/image_plane.hpp)
 //
-// Counters: rays.camera, volume.samples (trilinear lookups of the grid).
-#include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/RayIntersector.h>
-
+// Counters: rays.camera, volume.samples (trilinear lookups of the grids);
+// with meshes also rays.surface (camera rays ending at a surface) and
+// rays.shadow.
+#include <limits>
 #include <optional>
 
 #include "core/sampling/pixel_loop.hpp"
 #include "core/base/rng.hpp"
 #include "core/sampling/image_plane.hpp"
-#include "core/volume/volume_ray.hpp"
+#include "core/lighting/delta_lights.hpp"
+#include "plugins/volume_raymarch/surface_shading.hpp"
+#include "plugins/volume_raymarch/volume_march.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {
 
 namespace {
-
-using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
-using Intersector = openvdb::tools::VolumeRayIntersector<openvdb::FloatGrid, 0>;
 
 struct RaymarchParams {
     double step;
@@ -47,7 +60,7 @@ struct RaymarchParams {
 
 std::vector<ParamSpec> raymarchParams() {
     std::vector<ParamSpec> specs = {
-        floatParam("step", 0.5, 1e-4, 64, "distance between samples along a ray, in voxels"),
+        floatParam("step", 0.5, 1e-4, 64, "distance between samples along a ray, in voxel lengths of the finest volume it crosses"),
         boolParam("jitter", false, "random per-ray offset of the first sample (trades banding for noise)"),
         floatParam("ert", 0.99, 0, 1, "early ray termination once opacity reaches this (1 = never)"),
         boolParam("skip_empty", false, "skip regions without active voxels (OpenVDB HDDA); same image, fewer samples"),
@@ -59,6 +72,11 @@ std::vector<ParamSpec> raymarchParams() {
     return specs;
 }
 
+// Per-pixel-sample counts of one row's shader.
+struct RaymarchCounts {
+    std::int64_t rays = 0, surface = 0, shadow = 0;
+};
+
 class Raymarch final : public Technique {
 public:
     Raymarch(const Scene& scene, const ParamSet& p)
@@ -67,91 +85,70 @@ public:
           plane_(readImagePlaneOptions(p)) {
         if (params_.jitter && !params_.offsetPattern.empty())
             throw Error("volume.raymarch: jitter=true and offset_pattern both set the first sample's offset; choose one");
-        if (scene.volumes.size() != 1)
-            throw Error("volume.raymarch renders exactly one volume; the scene has " + std::to_string(scene.volumes.size()));
-        const Volume& vol = scene.volumes.front();
-        if (params_.skipEmpty && vol.tf.lookup(vol.grid->background()).extinction > 0)
-            throw Error("volume.raymarch: skip_empty=true needs a transfer function that is transparent at the grid's background value");
-        // Trilinear support reaches the 26 neighbours of an active voxel; three
-        // face-neighbour dilations cover them all (Manhattan distance <= 3).
-        if (params_.skipEmpty) intersector_.emplace(*vol.grid, 3);
+        for (const Volume& vol : scene.volumes)
+            if (params_.skipEmpty && vol.tf.lookup(vol.grid->background()).extinction > 0)
+                throw Error("volume.raymarch: skip_empty=true needs a transfer function that is transparent at the grid's background value "
+                            "(volume '" + vol.source + "')");
+        if (!scene.meshes.empty())
+            for (const Light& l : scene.lights)
+                if (l.type == LightType::Environment)
+                    throw Error("volume.raymarch lights surfaces with point, directional and emissive lights only; the scene has an environment light");
+        if (params_.skipEmpty && !scene.volumes.empty()) skipper_.emplace(scene.volumes);
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
         std::optional<PatternSet> offsets;
         if (!params_.offsetPattern.empty()) offsets = makePatternSet(params_.offsetPattern, s.spp, hashCombine(s.seed, 0x0ff5));
+        const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // built before the pixel loop
+        if (accel) scene.emitters();
+        const float eps = accel ? rayEpsilon(scene) : 0.0f;
         const ImagePlane plane(plane_, s);
-        // One per row: its own grid accessor and HDDA, and its counts.
+        // One per row: its own grid accessors and HDDAs, and its counts.
         struct Shader {
             const Raymarch& self;
             const Scene& scene;
             const RenderSettings& s;
             const std::optional<PatternSet>& offsets;
-            openvdb::FloatGrid::ConstAccessor accessor;
-            Sampler sampler;  // keeps a pointer to accessor: Shader is built in place, never copied
-            std::optional<Intersector> hdda;
-            std::int64_t samples = 0, rays = 0;
+            const MeshAccel* accel;
+            float eps;
+            VolumeMarcher marcher;  // built in place, never copied
+            RaymarchCounts counts;
 
-            Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o)
-                : self(r), scene(sc), s(st), offsets(o), accessor(sc.volumes.front().grid->getConstAccessor()),
-                  sampler(accessor, sc.volumes.front().grid->transform()) {
-                if (r.intersector_) hdda.emplace(*r.intersector_);
-            }
+            Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o,
+                   const MeshAccel* a, float e)
+                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e),
+                  marcher(sc, {r.params_.step, r.params_.ertOpacity}, r.skipper_ ? &*r.skipper_ : nullptr) {}
             Rgba operator()(const CameraSample& c) {
                 const Ray ray = scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
                 float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.5f;
                 if (offsets) offset = offsets->sample(c.px, c.py, int(c.index % std::uint32_t(s.spp))).t;
-                const RayAccumulator acc =
-                    self.march(scene.volumes.front(), ray, offset, sampler, hdda ? &*hdda : nullptr, samples);
-                ++rays;
-                return {acc.r, acc.g, acc.b, acc.opacity()};
+                ++counts.rays;
+                const SurfaceHit hit = accel ? firstSurface(*accel, ray) : SurfaceHit{};
+                const double tSurface = hit.valid() ? double(hit.t) : std::numeric_limits<double>::infinity();
+                const RayAccumulator acc = marcher.march(ray, tSurface, offset);
+                if (!hit.valid()) return {acc.r, acc.g, acc.b, acc.opacity()};
+                ++counts.surface;
+                const PixelSampler sampler(s.seed, c.px, c.py, c.index, std::uint32_t(s.spp));
+                const Vec3f L = shadeSurface(scene, *accel, ray, hit, sampler, eps, counts.shadow);
+                const float T = acc.transmittance;
+                return {acc.r + T * L.x(), acc.g + T * L.y(), acc.b + T * L.z(), 1.0f};
             }
             void flush(Counters& counters) const {
-                counters.add("rays.camera", rays);
-                counters.add("volume.samples", samples);
+                counters.add("rays.camera", counts.rays);
+                counters.add("volume.samples", marcher.samples());
+                if (!accel) return;  // mesh-free renders keep their counters as they were
+                counters.add("rays.surface", counts.surface);
+                counters.add("rays.shadow", counts.shadow);
             }
         };
-        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets); });
+        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps); });
     }
 
 private:
-    // Samples t_k = t0 + (k + offset) * step for every k inside [lo, hi).
-    void marchInterval(const Volume& vol, const IndexRay& ray, double lo, double hi, float offset,
-                       Sampler& sampler, RayAccumulator& acc, std::int64_t& samples) const {
-        const double h = params_.step;
-        const double kFirst = std::max(0.0, std::ceil((lo - ray.t0) / h - offset));
-        for (double k = kFirst;; k += 1.0) {
-            const double t = ray.t0 + (k + offset) * h;
-            if (t >= hi || t >= ray.t1) break;
-            const float value = sampler.isSample(ray.at(t));
-            ++samples;
-            const TfSample c = vol.tf.lookup(value);
-            acc.add(c, segmentOpacity(c.extinction, float(h)));
-            if (acc.opacity() >= params_.ertOpacity) return;
-        }
-    }
-
-    RayAccumulator march(const Volume& vol, const Ray& worldRay, float offset, Sampler& sampler,
-                         Intersector* hdda, std::int64_t& samples) const {
-        RayAccumulator acc;
-        const auto ray = toIndexRay(worldRay, vol);
-        if (!ray) return acc;
-        if (!hdda) {
-            marchInterval(vol, *ray, ray->t0, ray->t1, offset, sampler, acc, samples);
-            return acc;
-        }
-        const openvdb::math::Ray<double> iray(ray->origin, ray->dir, ray->t0, ray->t1);
-        if (!hdda->setIndexRay(iray)) return acc;
-        double a = 0, b = 0;
-        while (hdda->march(a, b) && acc.opacity() < params_.ertOpacity)
-            marchInterval(vol, *ray, a, b, offset, sampler, acc, samples);
-        return acc;
-    }
-
     RaymarchParams params_;
     ImagePlaneOptions plane_;
-    std::optional<Intersector> intersector_;
+    std::optional<EmptySpaceSkipper> skipper_;
 };
 
 const TechniqueRegistrar registrar{{
@@ -160,6 +157,7 @@ const TechniqueRegistrar registrar{{
     ParamTable("volume.raymarch", raymarchParams()),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<Raymarch>(scene, p); },
     /*motionBlur=*/true,
+    /*renders=*/Content::VolumesAndMeshes,
 }};
 
 }  // namespace

@@ -1,0 +1,35 @@
+#pragma once
+// What a camera ray sees at its first surface: the surface's own emission
+// (from its front) plus direct light from the scene's lights and emitters,
+// with shadow rays against the meshes (core/lighting/direct_light.hpp), on
+// the Lambert + glossy BRDF the mesh techniques share.
+#include <limits>
+
+#include "core/lighting/brdf.hpp"
+#include "core/lighting/direct_light.hpp"
+#include "core/mesh/mesh_accel.hpp"
+#include "core/sampling/pixel_sampler.hpp"
+#include "core/scene/scene.hpp"
+
+namespace weft {
+
+inline Vec3f toVec3f(const Vec3d& v) { return Vec3f(float(v.x()), float(v.y()), float(v.z())); }
+
+// The first surface along a camera ray (invalid when none).
+inline SurfaceHit firstSurface(const MeshAccel& accel, const Ray& ray) {
+    return accel.intersect(toVec3f(ray.origin), toVec3f(ray.dir), 0.0f, std::numeric_limits<float>::infinity());
+}
+
+// Outgoing radiance towards the camera at `hit`; sampler dimensions from 2.
+inline Vec3f shadeSurface(const Scene& scene, const MeshAccel& accel, const Ray& ray, const SurfaceHit& hit,
+                          const PixelSampler& sampler, float eps, std::int64_t& shadowRays) {
+    const Vec3f d = toVec3f(ray.dir);
+    const Vec3f p = toVec3f(ray.origin) + d * hit.t, wo = -d.unitSafe();
+    const Material& mat = scene.materials[accel.material(hit.geom, hit.prim)];
+    const bool front = hit.normal.dot(wo) > 0;
+    const Vec3f n = front ? hit.normal : -hit.normal;
+    Vec3f L = front && mat.emissive() ? mat.emission : Vec3f(0, 0, 0);
+    return L + directLight(scene, accel, p, n, wo, Brdf::of(mat), sampler, 2, eps, shadowRays);
+}
+
+}  // namespace weft

@@ -1,0 +1,143 @@
+#include "plugins/volume_raymarch/volume_march.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace weft {
+
+namespace {
+
+// Adds b's extinction to a's and makes a's colour the extinction-weighted
+// mean: overlapping emission-absorption media add both.
+void mergeInto(TfSample& a, const TfSample& b) {
+    const float e = a.extinction + b.extinction;
+    a.r = (a.r * a.extinction + b.r * b.extinction) / e;
+    a.g = (a.g * a.extinction + b.g * b.extinction) / e;
+    a.b = (a.b * a.extinction + b.b * b.extinction) / e;
+    a.extinction = e;
+}
+
+}  // namespace
+
+EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
+    for (const Volume& v : volumes) {
+        indexGrids_.push_back(indexSpaceGrid(*v.grid));
+        // Trilinear support reaches the 26 neighbours of an active voxel; three
+        // face-neighbour dilations cover them all (Manhattan distance <= 3).
+        intersectors_.push_back(std::make_unique<VolumeIntersector>(*indexGrids_.back(), 3));
+    }
+}
+
+VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototype)
+    : volume(v), accessor(v.grid->getConstAccessor()), sampler(accessor, v.grid->transform()),
+      voxelLength(v.voxelLength()), uniform(v.grid->transform().hasUniformScale()) {
+    if (prototype) hdda.emplace(*prototype);
+}
+
+VolumeMarcher::VolumeMarcher(const Scene& scene, const MarchSettings& settings, const EmptySpaceSkipper* skipper)
+    : settings_(settings) {
+    for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+        lookups_.emplace_back(scene.volumes[i], skipper ? &skipper->of(i) : nullptr);
+}
+
+// The volumes this ray crosses, their index rays and the march's unit.
+bool VolumeMarcher::cross(const Ray& ray) {
+    crossings_.clear();
+    unitLength_ = std::numeric_limits<double>::max();
+    for (Lookup& l : lookups_) {
+        const auto r = toIndexRay(ray, l.volume);
+        if (!r) continue;
+        crossings_.push_back({&l, *r, 0, 0});
+        unitLength_ = std::min(unitLength_, l.voxelLength);
+    }
+    if (crossings_.empty()) return false;
+    const double speed = ray.dir.length();  // world length per unit of the ray's parameter
+    u0_ = std::numeric_limits<double>::max(), uEnd_ = 0;
+    for (Crossing& c : crossings_) {
+        const double scale = unitLength_ / c.lookup->voxelLength;  // exactly 1 for the finest volume
+        c.perU = c.lookup->uniform ? scale : c.ray.speed * unitLength_ / speed;
+        c.depthScale = float(scale);
+        u0_ = std::min(u0_, c.ray.t0 / c.perU);
+        uEnd_ = std::max(uEnd_, c.ray.t1 / c.perU);
+    }
+    return true;
+}
+
+// Where samples may be needed, in march units: the whole span, or with
+// skip_empty each volume's occupied intervals (overlapping ones merged).
+void VolumeMarcher::collectIntervals(double uEnd) {
+    intervals_.clear();
+    if (!lookups_.front().hdda) {
+        intervals_.push_back({u0_, uEnd});
+        return;
+    }
+    for (const Crossing& c : crossings_) {
+        VolumeIntersector& hdda = *c.lookup->hdda;
+        if (!hdda.setIndexRay(openvdb::math::Ray<double>(c.ray.origin, c.ray.dir, c.ray.t0, c.ray.t1))) continue;
+        double a = 0, b = 0;
+        while (hdda.march(a, b)) intervals_.push_back({a / c.perU, b / c.perU});
+    }
+    if (crossings_.size() == 1) return;  // one HDDA's intervals are already in order
+    std::sort(intervals_.begin(), intervals_.end(), [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
+    std::vector<Interval> merged;
+    for (const Interval& in : intervals_) {
+        if (!merged.empty() && in.lo < merged.back().hi) merged.back().hi = std::max(merged.back().hi, in.hi);
+        else merged.push_back(in);
+    }
+    intervals_.swap(merged);
+}
+
+// One segment of `length` march units sampled at u: every volume holding u.
+void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
+    TfSample sum{0, 0, 0, 0};
+    bool any = false;
+    for (Crossing& c : crossings_) {
+        const double t = u * c.perU;
+        if (t < c.ray.t0 || t >= c.ray.t1) continue;
+        const float value = c.lookup->sampler.isSample(c.ray.at(t));
+        ++samples_;
+        TfSample s = c.lookup->volume.tf.lookup(value);
+        if (!(s.extinction > 0)) continue;  // adds nothing
+        s.extinction *= c.depthScale;
+        if (any) mergeInto(sum, s);
+        else sum = s, any = true;
+    }
+    if (any) acc.add(sum, segmentOpacity(sum.extinction, float(length)));
+}
+
+// Samples u_k = u0 + (k + offset) * step for k < kMax inside [lo, hi);
+// false once early ray termination ends the ray.
+bool VolumeMarcher::marchInterval(const Interval& in, double kMax, float offset, RayAccumulator& acc) {
+    const double h = settings_.step;
+    const double kFirst = std::max(0.0, std::ceil((in.lo - u0_) / h - offset));
+    for (double k = kFirst; k < kMax; k += 1.0) {
+        const double u = u0_ + (k + offset) * h;
+        if (u >= in.hi || u >= uEnd_) break;
+        addSegment(u, h, acc);
+        if (acc.opacity() >= settings_.ertOpacity) return false;
+    }
+    return true;
+}
+
+RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offset) {
+    RayAccumulator acc;
+    if (!cross(ray)) return acc;
+    const double h = settings_.step;
+    const double uHit = std::isfinite(tSurface) ? tSurface * ray.dir.length() / unitLength_ : uEnd_;
+    if (uHit <= u0_) return acc;
+    const bool cut = uHit < uEnd_;  // the surface ends the march inside the volumes
+    const double kLast = cut ? std::floor((uHit - u0_) / h) : std::numeric_limits<double>::infinity();
+    collectIntervals(uEnd_);
+    const bool skipping = lookups_.front().hdda.has_value();
+    for (const Interval& in : intervals_) {
+        if (skipping && acc.opacity() >= settings_.ertOpacity) return acc;
+        if (!marchInterval(in, kLast, offset, acc)) return acc;
+    }
+    if (!cut) return acc;
+    const double start = u0_ + kLast * h, length = uHit - start;
+    if (length > 0) addSegment(start + offset * length, length, acc);
+    return acc;
+}
+
+}  // namespace weft
