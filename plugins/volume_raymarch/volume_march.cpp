@@ -108,16 +108,36 @@ void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
 
 // Samples u_k = u0 + (k + offset) * step for k < kMax inside [lo, hi);
 // false once early ray termination ends the ray.
-bool VolumeMarcher::marchInterval(const Interval& in, double kMax, float offset, RayAccumulator& acc) {
-    const double h = settings_.step;
-    const double kFirst = std::max(0.0, std::ceil((in.lo - u0_) / h - offset));
+template <class AddSegment>
+bool VolumeMarcher::marchSteps(const Interval& in, double kMax, float offset, RayAccumulator& acc, AddSegment&& add) {
+    const double h = settings_.step, u0 = u0_, end = std::min(in.hi, uEnd_);  // locals: no reloads after each sample
+    const float ert = settings_.ertOpacity;
+    const double kFirst = std::max(0.0, std::ceil((in.lo - u0) / h - offset));
     for (double k = kFirst; k < kMax; k += 1.0) {
-        const double u = u0_ + (k + offset) * h;
-        if (u >= in.hi || u >= uEnd_) break;
-        addSegment(u, h, acc);
-        if (acc.opacity() >= settings_.ertOpacity) return false;
+        const double u = u0 + (k + offset) * h;
+        if (u >= end) break;
+        add(u, h);
+        if (acc.opacity() >= ert) return false;
     }
     return true;
+}
+
+bool VolumeMarcher::marchInterval(const Interval& in, double kMax, float offset, RayAccumulator& acc) {
+    if (crossings_.size() > 1) return marchSteps(in, kMax, offset, acc, [&](double u, double h) { addSegment(u, h, acc); });
+    // One volume, the common case: the march's bounds keep every sample inside it.
+    const IndexRay ray = crossings_.front().ray;
+    const double perU = crossings_.front().perU;
+    const float depthScale = crossings_.front().depthScale;
+    VolumeSampler& sampler = crossings_.front().lookup->sampler;
+    const TransferFunction& tf = crossings_.front().lookup->volume.tf;
+    std::int64_t n = 0;
+    const bool more = marchSteps(in, kMax, offset, acc, [&](double u, double h) {
+        const TfSample s = tf.lookup(sampler.isSample(ray.at(u * perU)));
+        ++n;
+        acc.add(s, segmentOpacity(s.extinction * depthScale, float(h)));
+    });
+    samples_ += n;
+    return more;
 }
 
 RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offset) {

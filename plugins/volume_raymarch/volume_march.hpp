@@ -83,6 +83,8 @@ private:
     bool cross(const Ray& ray);
     void collectIntervals(double uEnd);
     bool marchInterval(const Interval& in, double kMax, float offset, RayAccumulator& acc);
+    template <class AddSegment>
+    bool marchSteps(const Interval& in, double kMax, float offset, RayAccumulator& acc, AddSegment&& add);
     void addSegment(double u, double length, RayAccumulator& acc);
 
     MarchSettings settings_;
