@@ -42,7 +42,7 @@
 #include "core/base/rng.hpp"
 #include "core/sampling/image_plane.hpp"
 #include "core/lighting/delta_lights.hpp"
-#include "plugins/volume_raymarch/surface_shading.hpp"
+#include "core/lighting/surface_shading.hpp"
 #include "plugins/volume_raymarch/volume_march.hpp"
 #include "plugins/technique.hpp"
 
@@ -89,10 +89,7 @@ public:
             if (params_.skipEmpty && vol.tf.lookup(vol.grid->background()).extinction > 0)
                 throw Error("volume.raymarch: skip_empty=true needs a transfer function that is transparent at the grid's background value "
                             "(volume '" + vol.source + "')");
-        if (!scene.meshes.empty())
-            for (const Light& l : scene.lights)
-                if (l.type == LightType::Environment)
-                    throw Error("volume.raymarch lights surfaces with point, directional and emissive lights only; the scene has an environment light");
+        requireSurfaceLights(scene, "volume.raymarch");
         if (params_.skipEmpty && !scene.volumes.empty()) skipper_.emplace(scene.volumes);
     }
 

@@ -2,16 +2,27 @@
 // What a camera ray sees at its first surface: the surface's own emission
 // (from its front) plus direct light from the scene's lights and emitters,
 // with shadow rays against the meshes (core/lighting/direct_light.hpp), on
-// the Lambert + glossy BRDF the mesh techniques share.
+// the Lambert + glossy BRDF the mesh techniques share. Used by the volume
+// techniques that end camera rays at surfaces (volume.raymarch, volume.preint).
 #include <limits>
+#include <string>
 
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/direct_light.hpp"
+#include "core/base/error.hpp"
 #include "core/mesh/mesh_accel.hpp"
 #include "core/sampling/pixel_sampler.hpp"
 #include "core/scene/scene.hpp"
 
 namespace weft {
+
+// Surfaces are lit by point, directional and emissive lights only.
+inline void requireSurfaceLights(const Scene& scene, const std::string& technique) {
+    if (scene.meshes.empty()) return;
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Environment)
+            throw Error(technique + " lights surfaces with point, directional and emissive lights only; the scene has an environment light");
+}
 
 inline Vec3f toVec3f(const Vec3d& v) { return Vec3f(float(v.x()), float(v.y()), float(v.z())); }
 
