@@ -158,3 +158,20 @@ TEST(RaymarchScene, CombinedImageDiffersFromVolumeOnlyAndMeshOnly) {
     EXPECT_NEAR(both.image.at(0, 0, 0), mesh.image.at(0, 0, 0), 1e-6);
     EXPECT_LT(std::abs(both.image.at(12, 12, 0) - (volume.image.at(12, 12, 0) + (1 - volume.image.at(12, 12, 3)) * mesh.image.at(12, 12, 0))), 1e-5);
 }
+
+TEST(RaymarchScene, ARayThroughOneOfSeveralVolumesMarchesItAtItsOwnVoxelLength) {
+    // A fine and a coarse sphere either side of the camera's axis: no ray
+    // meets both, so every pixel is that of the volume it crosses alone
+    // (the common step follows the volumes a ray crosses, not the scene's).
+    test::TempDir dir;
+    const std::string fine = R"({"procedural": "sphere", "resolution": 32, "translate": [0.8, 0, 0], )" + whiteTf(0.05) + "}";
+    const std::string coarse = R"({"procedural": "cloud", "resolution": 12, "translate": [-0.8, 0, 0], )" + whiteTf(0.3) + "}";
+    auto wide = [](std::string text) { return text.replace(text.find("\"fov\": 30"), 9, "\"fov\": 40"); };
+    const RenderOutcome both = render(writeScene(dir, "both.json", wide(sceneText(fine + ", " + coarse, false))), "32x16", {"step=0.7"});
+    const RenderOutcome a = render(writeScene(dir, "a.json", wide(sceneText(fine, false))), "32x16", {"step=0.7"});
+    const RenderOutcome b = render(writeScene(dir, "b.json", wide(sceneText(coarse, false))), "32x16", {"step=0.7"});
+    for (std::size_t i = 0; i < both.image.data().size(); ++i)
+        ASSERT_EQ(both.image.data()[i], a.image.data()[i] + b.image.data()[i]) << "value " << i;
+    EXPECT_GT(a.image.at(22, 8, 3), 0.3f);
+    EXPECT_GT(b.image.at(10, 8, 3), 0.1f);
+}
