@@ -1,0 +1,182 @@
+#include "core/volume/medium.hpp"
+
+#include <openvdb/tools/Interpolation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/volume/volume_ray.hpp"
+
+namespace weft {
+
+namespace {
+
+// A ray that crosses absurd extinction (1e12 per voxel) in a trilinear ramp
+// would meet ~1e10 null collisions; past this many it is taken as opaque.
+// Ordinary media need orders of magnitude fewer.
+constexpr int kMaxCollisions = 1 << 16;
+
+double maxChannel(const Vec3d& v) { return std::max({v[0], v[1], v[2]}); }
+double minChannel(const Vec3d& v) { return std::min({v[0], v[1], v[2]}); }
+double mean(const Vec3d& v) { return (v[0] + v[1] + v[2]) / 3.0; }
+Vec3d abs3(const Vec3d& v) { return Vec3d(std::abs(v[0]), std::abs(v[1]), std::abs(v[2])); }
+
+double usableDensity(double rho) { return std::isfinite(rho) && rho > 0 ? rho : 0.0; }
+
+// Exponential free path at rate m from a uniform number.
+double freePath(double majorant, Rng& rng) { return -std::log1p(-rng.uniformDouble()) / majorant; }
+
+}  // namespace
+
+Medium::Medium(const std::vector<Volume>& volumes) {
+    for (const Volume& v : volumes) {
+        if (v.empty()) continue;
+        const double perWorld = 1.0 / v.voxelLength();
+        Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0};
+        const double rhoMax = std::max({0.0, usableDensity(v.valueMax), usableDensity(v.grid->background())});
+        e.majorant = rhoMax * maxChannel(e.absorb + e.scatter);
+        if (!std::isfinite(e.majorant)) e.majorant = std::numeric_limits<double>::max();
+        volumes_.push_back(e);
+    }
+}
+
+MediumRay::MediumRay(const Medium& medium) : medium_(medium) {
+    accessors_.reserve(medium.volumes_.size());
+    for (const auto& e : medium.volumes_) accessors_.push_back(e.volume->grid->getConstAccessor());
+}
+
+void MediumRay::reset(const Vec3d& origin, const Vec3d& dir, double tMax) {
+    segments_.clear();
+    end_ = 0;
+    for (std::uint32_t i = 0; i < medium_.volumes_.size(); ++i) {
+        const Medium::Entry& e = medium_.volumes_[i];
+        const auto& xf = e.volume->grid->transform();
+        const Vec3d io = xf.worldToIndex(origin), step = xf.worldToIndex(origin + dir) - io;
+        const double perWorld = step.length();  // index length per world length
+        if (!(perWorld > 0) || !(e.majorant > 0)) continue;
+        const auto clip = toIndexRay(Ray{origin, dir}, *e.volume);
+        if (!clip) continue;
+        MediumSegment s{i, clip->t0 / perWorld, std::min(clip->t1 / perWorld, tMax), e.majorant, io, step};
+        if (s.t1 > s.t0) segments_.push_back(s), end_ = std::max(end_, s.t1);
+    }
+}
+
+MajorantSpan MediumRay::majorantAt(double t) const {
+    MajorantSpan span{0.0, end_};
+    for (const MediumSegment& s : segments_) {
+        if (t < s.t0) {
+            span.next = std::min(span.next, s.t0);
+        } else if (t < s.t1) {
+            span.majorant += s.majorant;
+            span.next = std::min(span.next, s.t1);
+        }
+    }
+    return span;
+}
+
+MediumCoefficients MediumRay::at(double t) {
+    MediumCoefficients c;
+    double gWeight = 0;
+    for (const MediumSegment& s : segments_) {
+        if (t < s.t0 || t >= s.t1) continue;
+        const Medium::Entry& e = medium_.volumes_[s.volume];
+        const Vec3d ijk = s.indexOrigin + s.indexStep * t;
+        const double rho = usableDensity(openvdb::tools::BoxSampler::sample(accessors_[s.volume], ijk));
+        ++lookups;
+        const Vec3d scatter = e.scatter * rho;
+        c.extinction += e.absorb * rho + scatter;
+        c.scattering += scatter;
+        c.g += e.volume->medium.g * mean(scatter), gWeight += mean(scatter);
+    }
+    c.g = gWeight > 0 ? c.g / gWeight : 0.0;
+    return c;
+}
+
+double henyeyGreenstein(double g, double cosTheta) {
+    const double d = 1.0 + g * g - 2.0 * g * cosTheta;
+    return (1.0 - g * g) / (4.0 * M_PI * d * std::sqrt(d));
+}
+
+double sampleHenyeyGreensteinCos(double g, double u) {
+    if (std::abs(g) < 1e-3) return 1.0 - 2.0 * u;
+    const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
+    return std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+}
+
+Vec3d sampleHenyeyGreenstein(const Vec3d& d, double g, double u1, double u2) {
+    const double cosT = sampleHenyeyGreensteinCos(g, u1), sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
+    const double phi = 2.0 * M_PI * u2;
+    // An orthonormal frame around d (Duff et al. 2017).
+    const double sign = std::copysign(1.0, d.z()), a = -1.0 / (sign + d.z()), b = d.x() * d.y() * a;
+    const Vec3d t(1.0 + sign * d.x() * d.x() * a, sign * b, -sign * d.x()), bt(b, sign + d.y() * d.y() * a, -d.y());
+    return (t * (sinT * std::cos(phi)) + bt * (sinT * std::sin(phi)) + d * cosT).unitSafe();
+}
+
+// Both estimators walk the piecewise-constant majorant: a free path that
+// passes the end of a span restarts at it (exponentials are memoryless).
+template <class AtCollision>
+static bool trackCollisions(MediumRay& ray, Rng& rng, std::int64_t& collisions, const AtCollision& atCollision) {
+    double t = 0;
+    for (int n = 0; n < kMaxCollisions;) {
+        const MajorantSpan span = ray.majorantAt(t);
+        if (t >= ray.end()) return true;
+        if (!(span.majorant > 0)) {
+            t = span.next;
+            continue;
+        }
+        const double next = t + freePath(span.majorant, rng);
+        if (next >= span.next) {
+            t = span.next;
+            continue;
+        }
+        t = next, ++n, ++collisions;
+        if (!atCollision(t, span.majorant)) return true;
+    }
+    return false;  // capped: taken as opaque
+}
+
+Vec3d ratioTrackingTransmittance(MediumRay& ray, Rng& rng, std::int64_t& collisions) {
+    Vec3d T(1.0);
+    const bool done = trackCollisions(ray, rng, collisions, [&](double t, double m) {
+        const Vec3d s = ray.at(t).extinction;
+        for (int c = 0; c < 3; ++c) T[c] *= std::clamp(1.0 - s[c] / m, 0.0, 1.0);
+        return T[0] + T[1] + T[2] > 0.0;
+    });
+    return done ? T : Vec3d(0.0);
+}
+
+Vec3d deltaTrackingTransmittance(MediumRay& ray, Rng& rng, std::int64_t& collisions) {
+    Vec3d T(1.0);
+    const bool done = trackCollisions(ray, rng, collisions, [&](double t, double m) {
+        const Vec3d s = ray.at(t).extinction;
+        const double real = std::clamp(minChannel(s) / m, 0.0, 1.0);
+        if (rng.uniformDouble() < real) return T = Vec3d(0.0), false;
+        for (int c = 0; c < 3; ++c) T[c] *= std::clamp(1.0 - s[c] / m, 0.0, 1.0) / (1.0 - real);
+        return T[0] + T[1] + T[2] > 0.0;
+    });
+    return done ? T : Vec3d(0.0);
+}
+
+FreeFlight sampleFreeFlight(MediumRay& ray, Rng& rng, Vec3d& throughput, std::int64_t& collisions) {
+    FreeFlight flight;
+    const bool done = trackCollisions(ray, rng, collisions, [&](double t, double m) {
+        const MediumCoefficients c = ray.at(t);
+        Vec3d nullSigma(0.0);
+        for (int k = 0; k < 3; ++k) nullSigma[k] = std::max(0.0, m - c.extinction[k]);
+        const double ps = mean(abs3(throughput * c.scattering)), pn = mean(abs3(throughput * nullSigma));
+        if (!(ps + pn > 0)) return throughput = Vec3d(0.0), false;  // all absorbed
+        const double pScatter = ps / (ps + pn);
+        if (rng.uniformDouble() < pScatter) {
+            throughput *= c.scattering / (m * pScatter);
+            flight = {true, t, c};
+            return false;
+        }
+        throughput *= nullSigma / (m * (1.0 - pScatter));
+        return true;
+    });
+    if (!done) throughput = Vec3d(0.0);
+    return flight;
+}
+
+}  // namespace weft
