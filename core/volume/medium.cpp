@@ -27,23 +27,83 @@ double usableDensity(double rho) { return std::isfinite(rho) && rho > 0 ? rho : 
 // Exponential free path at rate m from a uniform number.
 double freePath(double majorant, Rng& rng) { return -std::log1p(-rng.uniformDouble()) / majorant; }
 
+constexpr int kBrickLog2 = 3;  // 8^3 voxels, OpenVDB's leaf
+constexpr int kBrick = 1 << kBrickLog2;
+
+openvdb::Coord brickOf(const openvdb::Coord& voxel) {
+    return openvdb::Coord(voxel.x() >> kBrickLog2, voxel.y() >> kBrickLog2, voxel.z() >> kBrickLog2);
+}
+
+void raise(openvdb::FloatGrid::Accessor& acc, const openvdb::Coord& c, float v) {
+    if (v > acc.getValue(c)) acc.setValue(c, v);
+}
+
+// Largest usable density per brick, then spread to the 26 neighbours so a
+// brick's bound covers trilinear lookups that reach into the next brick.
+openvdb::FloatGrid::Ptr densityBricks(const openvdb::FloatGrid& grid) {
+    const float background = float(usableDensity(grid.background()));
+    auto raw = openvdb::FloatGrid::create(background), bricks = openvdb::FloatGrid::create(background);
+    auto rawAcc = raw->getAccessor(), acc = bricks->getAccessor();
+    for (auto it = grid.tree().cbeginValueAll(); it; ++it) {
+        const float v = float(usableDensity(*it));
+        if (v <= background) continue;
+        const openvdb::CoordBBox box = it.getBoundingBox();
+        if (box.volume() == 1) {
+            raise(rawAcc, brickOf(box.min()), v);
+            continue;
+        }
+        // A tile: every brick it covers (tiles are whole bricks or larger).
+        const openvdb::CoordBBox bb(brickOf(box.min()), brickOf(box.max()));
+        for (auto c = bb.begin(); c; ++c) raise(rawAcc, *c, v);
+    }
+    for (auto it = raw->cbeginValueOn(); it; ++it)
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) raise(acc, it.getCoord().offsetBy(dx, dy, dz), *it);
+    return bricks;
+}
+
 }  // namespace
 
 Medium::Medium(const std::vector<Volume>& volumes) {
     for (const Volume& v : volumes) {
         if (v.empty()) continue;
         const double perWorld = 1.0 / v.voxelLength();
-        Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0};
-        const double rhoMax = std::max({0.0, usableDensity(v.valueMax), usableDensity(v.grid->background())});
-        e.majorant = rhoMax * maxChannel(e.absorb + e.scatter);
-        if (!std::isfinite(e.majorant)) e.majorant = std::numeric_limits<double>::max();
+        Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0, nullptr};
+        e.coefficientMax = maxChannel(e.absorb + e.scatter);
+        if (!(e.coefficientMax > 0)) continue;  // nothing to meet
+        e.bricks = densityBricks(*v.grid);
         volumes_.push_back(e);
     }
 }
 
 MediumRay::MediumRay(const Medium& medium) : medium_(medium) {
-    accessors_.reserve(medium.volumes_.size());
-    for (const auto& e : medium.volumes_) accessors_.push_back(e.volume->grid->getConstAccessor());
+    for (const auto& e : medium.volumes_) {
+        accessors_.push_back(e.volume->grid->getConstAccessor());
+        brickAccessors_.push_back(e.bricks->getConstAccessor());
+    }
+}
+
+// Amanatides-Woo in brick coordinates, parametrised by world distance.
+void MediumRay::startBricks(MediumSegment& s) {
+    const double t = s.t0;
+    const Vec3d p = (s.indexOrigin + s.indexStep * t) / double(kBrick), dir = s.indexStep / double(kBrick);
+    for (int a = 0; a < 3; ++a) {
+        s.brick[a] = int(std::floor(p[a]));
+        if (dir[a] > 0) s.crossing[a] = t + (s.brick[a] + 1 - p[a]) / dir[a], s.crossingStep[a] = 1 / dir[a];
+        else if (dir[a] < 0) s.crossing[a] = t + (s.brick[a] - p[a]) / dir[a], s.crossingStep[a] = -1 / dir[a];
+        else s.crossing[a] = s.crossingStep[a] = std::numeric_limits<double>::infinity();
+    }
+    s.exit = std::min({s.crossing[0], s.crossing[1], s.crossing[2], s.t1});
+    s.majorant = brickAccessors_[s.volume].getValue(s.brick) * medium_.volumes_[s.volume].coefficientMax;
+}
+
+void MediumRay::nextBrick(MediumSegment& s) {
+    const int a = s.crossing[0] <= s.crossing[1] ? (s.crossing[0] <= s.crossing[2] ? 0 : 2) : (s.crossing[1] <= s.crossing[2] ? 1 : 2);
+    s.brick[a] += s.indexStep[a] > 0 ? 1 : -1;
+    s.crossing[a] += s.crossingStep[a];
+    s.exit = std::min({s.crossing[0], s.crossing[1], s.crossing[2], s.t1});
+    s.majorant = brickAccessors_[s.volume].getValue(s.brick) * medium_.volumes_[s.volume].coefficientMax;
 }
 
 void MediumRay::reset(const Vec3d& origin, const Vec3d& dir, double tMax) {
@@ -54,22 +114,25 @@ void MediumRay::reset(const Vec3d& origin, const Vec3d& dir, double tMax) {
         const auto& xf = e.volume->grid->transform();
         const Vec3d io = xf.worldToIndex(origin), step = xf.worldToIndex(origin + dir) - io;
         const double perWorld = step.length();  // index length per world length
-        if (!(perWorld > 0) || !(e.majorant > 0)) continue;
+        if (!(perWorld > 0)) continue;
         const auto clip = toIndexRay(Ray{origin, dir}, *e.volume);
         if (!clip) continue;
-        MediumSegment s{i, clip->t0 / perWorld, std::min(clip->t1 / perWorld, tMax), e.majorant, io, step};
-        if (s.t1 > s.t0) segments_.push_back(s), end_ = std::max(end_, s.t1);
+        MediumSegment s{i, clip->t0 / perWorld, std::min(clip->t1 / perWorld, tMax), 0.0, io, step, {}, {}, {}, 0.0};
+        if (!(s.t1 > s.t0)) continue;
+        startBricks(s);
+        segments_.push_back(s), end_ = std::max(end_, s.t1);
     }
 }
 
-MajorantSpan MediumRay::majorantAt(double t) const {
+MajorantSpan MediumRay::majorantAt(double t) {
     MajorantSpan span{0.0, end_};
-    for (const MediumSegment& s : segments_) {
+    for (MediumSegment& s : segments_) {
         if (t < s.t0) {
             span.next = std::min(span.next, s.t0);
         } else if (t < s.t1) {
+            while (t >= s.exit) nextBrick(s);
             span.majorant += s.majorant;
-            span.next = std::min(span.next, s.t1);
+            span.next = std::min(span.next, s.exit);
         }
     }
     return span;

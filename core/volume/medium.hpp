@@ -10,8 +10,12 @@
 //
 // Volumes are found through a flat list of their world bounds: scenes hold
 // a handful of volumes, and each test is one box clip in index space.
-// Majorants are per volume (max finite density x max channel coefficient):
-// a bound everywhere inside the volume's box, so tracking stays unbiased.
+// Majorants are per brick of 8^3 voxels (OpenVDB's leaf size): the largest
+// finite density over the brick and its neighbours (trilinear lookups reach
+// one voxel across), times the largest channel coefficient, walked along
+// the ray by a 3D DDA. Thin and empty regions get small or zero majorants,
+// so they cost few or no collisions; the bound holds everywhere, so
+// tracking stays unbiased.
 #include <cstdint>
 #include <vector>
 
@@ -33,9 +37,14 @@ struct MediumCoefficients {
 struct MediumSegment {
     std::uint32_t volume = 0;
     double t0 = 0, t1 = 0;
-    double majorant = 0;  // >= every channel of the volume's extinction
+    double majorant = 0;  // >= every channel of the extinction in the current brick
     Vec3d indexOrigin;    // index-space point at t = 0
     Vec3d indexStep;      // index-space motion per unit world distance
+    // The DDA through the bricks: the current brick, where the ray crosses
+    // into the next one per axis, and the majorant on [.., exit).
+    openvdb::Coord brick;
+    Vec3d crossing, crossingStep;
+    double exit = 0;
 };
 
 // The majorant that holds on a stretch [t, next) of a ray: the sum over the
@@ -59,13 +68,17 @@ public:
     double end() const { return end_; }
     const std::vector<MediumSegment>& segments() const { return segments_; }
 
-    MajorantSpan majorantAt(double t) const;
+    // t must not decrease between calls after a reset (the DDA walks forward).
+    MajorantSpan majorantAt(double t);
     MediumCoefficients at(double t);
     std::int64_t lookups = 0;
 
 private:
     const Medium& medium_;
-    std::vector<openvdb::FloatGrid::ConstAccessor> accessors_;
+    void startBricks(MediumSegment& s);
+    void nextBrick(MediumSegment& s);
+
+    std::vector<openvdb::FloatGrid::ConstAccessor> accessors_, brickAccessors_;
     std::vector<MediumSegment> segments_;
     double end_ = 0;
 };
@@ -80,7 +93,8 @@ private:
     struct Entry {
         const Volume* volume;
         Vec3d absorb, scatter;  // per world length per unit density
-        double majorant;
+        double coefficientMax;  // largest channel of absorb + scatter
+        openvdb::FloatGrid::Ptr bricks;  // per brick: density bound (see above)
     };
     std::vector<Entry> volumes_;  // non-empty volumes only
 };

@@ -243,3 +243,33 @@ TEST(Medium, NonFiniteVoxelsReadAsEmpty) {
     const Vec3d T = ratioTrackingTransmittance(ray, rng, collisions);
     EXPECT_EQ(T[1], 1.0);
 }
+
+TEST(Medium, BrickMajorantsBoundTheExtinctionAndSkipEmptySpace) {
+    // Dense in the lower x half, empty in the upper (beyond one brick of
+    // trilinear support), under a rotated, anisotropic transform.
+    Volume v = cubeVolume(32, Vec3d(0.05), Vec3d(0.2, 0.3, 0.4), [](int i, int j, int k) {
+        return i < 12 ? float(0.5 + 0.5 * std::sin(1.3 * i + 0.7 * j) * std::cos(0.9 * k)) : 0.0f;
+    });
+    openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+    m.preScale(Vec3d(1.0, 2.0, 0.5));
+    m.postRotate(openvdb::math::Y_AXIS, 0.6);
+    v.grid = placeGrid(v.grid, m);
+    const Medium medium({v});
+    MediumRay ray(medium);
+    Rng rng(13);
+    int emptySteps = 0;
+    for (int r = 0; r < 200; ++r) {
+        const Vec3d o(rng.uniformDouble() * 0.3, rng.uniformDouble() * 2 - 0.2, rng.uniformDouble() * 0.5 - 0.3);
+        const Vec3d d = sampleHenyeyGreenstein(Vec3d(1, 0, 0), 0.0, rng.uniformDouble(), rng.uniformDouble());
+        ray.reset(o - d * 3.0, d, 1e30);
+        if (ray.empty()) continue;
+        for (double t = 0; t < ray.end(); t += 0.003) {
+            const MajorantSpan span = ray.majorantAt(t);
+            const Vec3d s = ray.at(t).extinction;
+            ASSERT_GE(span.majorant, std::max({s[0], s[1], s[2]}) * (1 - 1e-9)) << "ray " << r << " t " << t;
+            ASSERT_GT(span.next, t);
+            emptySteps += span.majorant == 0.0;
+        }
+    }
+    EXPECT_GT(emptySteps, 1000);  // the empty half costs no collisions
+}
