@@ -109,3 +109,31 @@ TEST(VolumePathTrace, SingleScatteringIsDarkerThanMultiple) {
     const double multiple = test::channelMean(renderSmoke(volumeOnly, {{"max_depth", "16"}}, 32), 1);
     EXPECT_GT(multiple, single * 1.05);  // albedo 0.95: higher orders add light
 }
+
+TEST(VolumePathTrace, CameraRayAlphaIsOneMinusTheClosedFormTransmittance) {
+    // A homogeneous cube of 16^3 voxels stretched 3x along z, seen along z
+    // through its centre: the trilinear ramps at both faces add half a voxel
+    // each, so the optical depth is 16 voxels of 3 h at sigma = k / voxelLength
+    // with voxelLength = h 3^(1/3): tau = 16 k 3^(2/3).
+    initVdb();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0 / 16));
+    grid->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(15)), 1.0f, true);
+    openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
+    m.preTranslate(Vec3d(-0.5 + 0.5 / 16, -0.5 + 0.5 / 16, -0.5 + 0.5 / 16));
+    m.postScale(Vec3d(1, 1, 3));
+    Volume v;
+    v.grid = placeGrid(grid, m);
+    const double k = 0.02;
+    v.medium.absorb = Vec3d(k / 2), v.medium.scatter = Vec3d(k / 2);
+    computeStatistics(v);
+    Scene scene;
+    scene.source = "stretched cube";
+    scene.volumes.push_back(v);
+    scene.lights.push_back(Light{});
+    scene.camera.eye = Vec3d(0, 0, 6), scene.camera.target = Vec3d(0, 0, 0);
+    const int n = 20000;
+    const Image img = test::renderScene(scene, "mesh.pathtrace", {{"max_depth", "1"}, {"jitter", "false"}}, 1, 1, n, 4);
+    const double T = std::exp(-16 * k * std::pow(3.0, 2.0 / 3.0));
+    EXPECT_NEAR(img.at(0, 0, 3), 1 - T, 4 * std::sqrt(T * (1 - T) / n)) << "T " << T;
+}
