@@ -140,7 +140,7 @@ MajorantSpan MediumRay::majorantAt(double t) {
 
 MediumCoefficients MediumRay::at(double t) {
     MediumCoefficients c;
-    double gWeight = 0;
+    lobes_.clear();
     for (const MediumSegment& s : segments_) {
         if (t < s.t0 || t >= s.t1) continue;
         const Medium::Entry& e = medium_.volumes_[s.volume];
@@ -150,10 +150,31 @@ MediumCoefficients MediumRay::at(double t) {
         const Vec3d scatter = e.scatter * rho;
         c.extinction += e.absorb * rho + scatter;
         c.scattering += scatter;
-        c.g += e.volume->medium.g * mean(scatter), gWeight += mean(scatter);
+        lobes_.push_back({e.volume->medium.g, scatter});
     }
-    c.g = gWeight > 0 ? c.g / gWeight : 0.0;
+    c.g = lobes_.size() == 1 ? lobes_[0].g : 0.0;
     return c;
+}
+
+double MediumRay::pickPhase(Rng& rng, Vec3d& throughput) const {
+    if (lobes_.size() == 1) return lobes_[0].g;
+    Vec3d total(0.0);
+    double sum = 0;
+    for (const Lobe& l : lobes_) total += l.scattering, sum += mean(l.scattering);
+    if (!(sum > 0)) return 0.0;
+    double u = rng.uniformDouble() * sum;
+    for (const Lobe& l : lobes_) {
+        const double p = mean(l.scattering);
+        if (u >= p && &l != &lobes_.back()) {
+            u -= p;
+            continue;
+        }
+        if (!(p > 0)) break;  // only by rounding at the end of the list
+        for (int c = 0; c < 3; ++c) throughput[c] *= total[c] > 0 ? l.scattering[c] / total[c] * (sum / p) : 0.0;
+        return l.g;
+    }
+    throughput = Vec3d(0.0);
+    return 0.0;
 }
 
 double henyeyGreenstein(double g, double cosTheta) {
@@ -233,6 +254,7 @@ FreeFlight sampleFreeFlight(MediumRay& ray, Rng& rng, Vec3d& throughput, std::in
         if (rng.uniformDouble() < pScatter) {
             throughput *= c.scattering / (m * pScatter);
             flight = {true, t, c};
+            flight.coefficients.g = ray.pickPhase(rng, throughput);
             return false;
         }
         throughput *= nullSigma / (m * (1.0 - pScatter));

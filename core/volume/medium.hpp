@@ -30,7 +30,7 @@ namespace weft {
 struct MediumCoefficients {
     Vec3d extinction{0.0};
     Vec3d scattering{0.0};
-    double g = 0;  // Henyey-Greenstein anisotropy (scattering-weighted mean where volumes overlap)
+    double g = 0;  // Henyey-Greenstein anisotropy (see FreeFlight where volumes overlap)
 };
 
 // One volume's stretch of a ray, in world distance along the (unit) ray.
@@ -71,6 +71,11 @@ public:
     // t must not decrease between calls after a reset (the DDA walks forward).
     MajorantSpan majorantAt(double t);
     MediumCoefficients at(double t);
+    // Where several volumes scatter at the last at() point, picks one's
+    // phase function with probability by mean scattering and weights each
+    // channel by (its share of that channel) / probability: an unbiased
+    // one-sample estimate of the mixture of their phase functions.
+    double pickPhase(Rng& rng, Vec3d& throughput) const;
     std::int64_t lookups = 0;
 
 private:
@@ -80,6 +85,11 @@ private:
 
     std::vector<openvdb::FloatGrid::ConstAccessor> accessors_, brickAccessors_;
     std::vector<MediumSegment> segments_;
+    struct Lobe {
+        double g;
+        Vec3d scattering;
+    };
+    std::vector<Lobe> lobes_;  // of the last at() point
     double end_ = 0;
 };
 
@@ -121,6 +131,7 @@ Vec3d deltaTrackingTransmittance(MediumRay& ray, Rng& rng, std::int64_t& collisi
 // to the throughput-weighted mean of sigma_s, a null collision to that of
 // (majorant - sigma_t); absorption is folded into the weights, so each
 // channel's estimate is unbiased (Kutz et al. 2017, spectral tracking).
+// Where volumes overlap, the phase function is picked by pickPhase.
 struct FreeFlight {
     bool scattered = false;  // else the ray reached ray.end() (or died: weight 0)
     double t = 0;

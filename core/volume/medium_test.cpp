@@ -273,3 +273,26 @@ TEST(Medium, BrickMajorantsBoundTheExtinctionAndSkipEmptySpace) {
     }
     EXPECT_GT(emptySteps, 1000);  // the empty half costs no collisions
 }
+
+TEST(Medium, OverlappingPhaseFunctionsMixByScattering) {
+    // Two cubes overlap with different g and chromatic scattering: the
+    // weighted lobe pick estimates, per channel, the mixture's mean cosine
+    // sum_i sigma_s,i g_i / sum_i sigma_s,i.
+    Volume a = homogeneousCube(16, Vec3d(0.0), Vec3d(0.3, 0.1, 0.2)), b = homogeneousCube(16, Vec3d(0.0), Vec3d(0.1, 0.3, 0.2));
+    a.medium.g = 0.8, b.medium.g = -0.5;
+    const Medium medium({a, b});
+    MediumRay ray(medium);
+    ray.reset(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), 10.0);
+    const MediumCoefficients c = ray.at(1.5);
+    Rng rng(23);
+    const Moments m = moments(100000, [&] {
+        Vec3d w(1.0);
+        const double g = ray.pickPhase(rng, w);
+        return w * sampleHenyeyGreensteinCos(g, rng.uniformDouble());
+    });
+    for (int k = 0; k < 3; ++k) {
+        const double sa = a.medium.scatter[k], sb = b.medium.scatter[k];
+        EXPECT_NEAR(m.mean[k], (sa * 0.8 - sb * 0.5) / (sa + sb), 4 * standardError(m, k)) << "channel " << k;
+    }
+    EXPECT_NEAR(c.scattering[0], 16 * 0.4, 1e-9);
+}
