@@ -1,5 +1,5 @@
-// mesh.pathtrace — unbiased path tracing of meshes, the reference the VPL
-// technique is measured against.
+// mesh.pathtrace — unbiased path tracing of meshes and volumes together,
+// the reference the VPL and the volume techniques are measured against.
 //
 // Camera paths bounce on Lambertian + Phong surfaces (core/lighting/brdf.hpp). At every
 // vertex, next-event estimation samples one point on the emitters (by power)
@@ -11,25 +11,45 @@
 // pure function of seed, pixel, sample and dimension: images are identical
 // for any thread count.
 //
+// In scenes with volumes the path tracer is volumetric (core/volume/medium.hpp):
+// free flights by weighted delta tracking against the max-channel majorant
+// (each RGB channel unbiased), Henyey-Greenstein scattering, and next-event
+// estimation at medium and surface vertices whose shadow rays surfaces block
+// and volumes attenuate (delta or ratio tracking, `shadow_tracking`). Every
+// scattering event, in a medium or on a surface, is a path vertex. Camera
+// rays that leave the scene carry alpha = 1 - their transmittance; a surface
+// gives alpha 1. Tracking draws from a per-sample generator (a pure function
+// of seed, pixel and sample), so mesh-only scenes use the sampler exactly as
+// before and render the same image.
+//
 // Parameters (see `weft help mesh.pathtrace`):
-//   max_depth  surface interactions per path: 1 = direct light only,
-//              2 = plus one indirect bounce (the VPL techniques' one bounce)
+//   max_depth  scattering events (surface or medium) per path: 1 = direct
+//              light only (single scattering), 2 = plus one indirect bounce
+//              (the VPL techniques' one bounce)
 //   rr_depth   vertices before Russian roulette starts
 //   glossy     phong | blinn: the glossy lobe of materials with Ks
 //   jitter     sample positions inside the pixel; false shoots every sample
 //              through the pixel centre, the way G-buffer techniques see it
+//   shadow_tracking  delta | ratio: the transmittance estimator of shadow
+//              rays through volumes
 //
-// Counters: rays.camera, rays.bounce, rays.shadow.
+// Counters: rays.camera, rays.bounce, rays.shadow; with volumes also
+// volume.lookups (density reads) and volume.collisions (tentative
+// collisions of free flights and shadow rays).
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/direct_light.hpp"
 #include "core/lighting/emitters.hpp"
+#include "core/lighting/medium_light.hpp"
 #include "core/mesh/mesh_accel.hpp"
 #include "core/sampling/pixel_loop.hpp"
 #include "core/sampling/pixel_sampler.hpp"
+#include "core/volume/medium.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {
@@ -40,40 +60,90 @@ struct PathCounts {
     std::int64_t bounce = 0, shadow = 0;
 };
 
+// Per-row state of volumetric paths: a medium ray for free flights and the
+// shadow rays (their OpenVDB accessors belong to one thread).
+struct MediumRow {
+    MediumRow(const MeshAccel& accel, const Medium& medium, ShadowTracking tracking)
+        : flight(medium), shadow(accel, medium, tracking) {}
+    MediumRay flight;
+    ShadowRays shadow;
+    std::int64_t collisions = 0;
+};
+
+// What a camera sample brings: radiance and coverage.
+struct PathSample {
+    Vec3f L{0, 0, 0};
+    float alpha = 1;
+};
+
+ShadowTracking shadowTrackingNamed(const std::string& name) {
+    return name == "ratio" ? ShadowTracking::Ratio : ShadowTracking::Delta;
+}
+
+// Meshes keep their light rules; a volume-only scene has no emitters, so it
+// needs a point or directional light.
+void requireLights(const Scene& scene) {
+    if (!scene.meshes.empty() || scene.volumes.empty()) return requireMeshLights(scene, "mesh.pathtrace");
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Environment) throw Error("mesh.pathtrace does not support environment lights (use point, directional or emissive materials)");
+    if (scene.lights.empty())
+        throw Error("mesh.pathtrace: the scene '" + scene.source + "' has volumes but no light (add a point or directional light)");
+}
+
+bool finite(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+double maxChannel(const Vec3d& v) { return std::max({v[0], v[1], v[2]}); }
+Vec3d toVec3d(const Vec3f& v) { return Vec3d(v.x(), v.y(), v.z()); }
+
 class PathTracer final : public Technique {
 public:
     PathTracer(const Scene& scene, const ParamSet& p)
         : maxDepth_(int(p.getInt("max_depth"))), rrDepth_(int(p.getInt("rr_depth"))), jitter_(p.getBool("jitter")),
-          model_(Brdf::modelNamed(p.getString("glossy"))) {
-        requireMeshLights(scene, "mesh.pathtrace");
+          model_(Brdf::modelNamed(p.getString("glossy"))), tracking_(shadowTrackingNamed(p.getString("shadow_tracking"))) {
+        requireLights(scene);
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
-        const MeshAccel& accel = scene.accel();  // built before the pixel loop
-        scene.emitters();
+        // Built before the pixel loop; a volume-only scene traces an empty BVH.
+        const MeshAccel noMeshes({});
+        const Emitters noEmitters;
+        const MeshAccel& accel = scene.meshes.empty() ? noMeshes : scene.accel();
+        emitters_ = scene.meshes.empty() ? &noEmitters : &scene.emitters();
         eps_ = rayEpsilon(scene);
+        const Medium medium(scene.volumes);
         Image image = Image::rgba(s.width, s.height);
         forEachRow(s, "mesh.pathtrace", [&](int y) {
             enableFastFloatMode();
             PathCounts counts;
+            std::optional<MediumRow> row;
+            if (!medium.empty()) row.emplace(accel, medium, tracking_);
             for (int x = 0; x < s.width; ++x) {
                 Vec3f sum(0, 0, 0);
+                float alpha = 0;
                 for (int i = 0; i < s.spp; ++i) {
                     const PixelSampler sampler(s.seed, x, y, std::uint32_t(i), std::uint32_t(s.spp));
                     const double jx = jitter_ ? sampler.get(0) : 0.5, jy = jitter_ ? sampler.get(1) : 0.5;
                     const Ray ray = scene.cameraAt(sampler.get(kTimeDim)).generate(x + jx, y + jy, s.width, s.height);
                     const Vec3f d(float(ray.dir.x()), float(ray.dir.y()), float(ray.dir.z()));
                     const Vec3f o(float(ray.origin.x()), float(ray.origin.y()), float(ray.origin.z()));
-                    sum += radiance(scene, accel, o, d, sampler, counts);
+                    if (!row) {
+                        sum += radiance(scene, accel, o, d, sampler, counts);
+                        continue;
+                    }
+                    Rng rng(hashCombine(hashCombine(s.seed ^ kMediumStream, (std::uint64_t(std::uint32_t(x)) << 32) | std::uint32_t(y)), std::uint64_t(i)));
+                    const PathSample p = radianceThroughMedia(scene, accel, o, d, sampler, rng, *row, counts);
+                    sum += p.L, alpha += p.alpha;
                 }
                 float* px = image.pixel(x, y);
                 const float inv = 1.0f / float(s.spp);
-                px[0] = sum.x() * inv, px[1] = sum.y() * inv, px[2] = sum.z() * inv, px[3] = 1.0f;
+                px[0] = sum.x() * inv, px[1] = sum.y() * inv, px[2] = sum.z() * inv, px[3] = row ? alpha * inv : 1.0f;
             }
             ctx.counters.add("rays.camera", std::int64_t(s.width) * s.spp);
             ctx.counters.add("rays.bounce", counts.bounce);
-            ctx.counters.add("rays.shadow", counts.shadow);
+            ctx.counters.add("rays.shadow", counts.shadow + (row ? row->shadow.traced : 0));
+            if (!row) return;
+            ctx.counters.add("volume.lookups", row->flight.lookups + row->shadow.lookups());
+            ctx.counters.add("volume.collisions", row->collisions + row->shadow.collisions);
         });
         return image;
     }
@@ -81,6 +151,7 @@ public:
 private:
     static constexpr std::uint32_t kDimsPerVertex = 8;
     static constexpr std::uint32_t kTimeDim = 1u << 24;  // the shutter time: a dimension no path vertex reaches
+    static constexpr std::uint64_t kMediumStream = 0x6d656469756dull;  // keys the tracking generator
 
     Vec3f radiance(const Scene& scene, const MeshAccel& accel, Vec3f o, Vec3f d, const PixelSampler& sampler,
                    PathCounts& counts) const {
@@ -112,24 +183,83 @@ private:
         return L;
     }
 
+    // A path through volumes and surfaces. Each segment runs from o to the
+    // first surface; a free flight inside it either scatters in a medium or
+    // reaches the surface (or leaves the scene) with its null-collision weights.
+    PathSample radianceThroughMedia(const Scene& scene, const MeshAccel& accel, Vec3f o, Vec3f d,
+                                    const PixelSampler& sampler, Rng& rng, MediumRow& row, PathCounts& counts) const {
+        PathSample out;
+        Vec3d beta(1.0);
+        for (int vertex = 1;; ++vertex) {
+            const SurfaceHit hit = accel.intersect(o, d, 0.0f, std::numeric_limits<float>::infinity());
+            row.flight.reset(toVec3d(o), toVec3d(d), hit.valid() ? double(hit.t) : std::numeric_limits<double>::infinity());
+            const FreeFlight flight = row.flight.empty() ? FreeFlight{} : sampleFreeFlight(row.flight, rng, beta, row.collisions);
+            if (vertex == 1 && !hit.valid() && !flight.scattered)  // E[beta] = transmittance per channel
+                out.alpha = std::clamp(1.0f - float((beta[0] + beta[1] + beta[2]) / 3.0), 0.0f, 1.0f);
+            if (!(maxChannel(beta) > 0) || (!flight.scattered && !hit.valid())) break;
+            const std::uint32_t dim = 2 + kDimsPerVertex * std::uint32_t(vertex - 1);
+            Vec3f wi;
+            if (flight.scattered) {
+                const Vec3f p = o + d * float(flight.t);
+                const double g = flight.coefficients.g;
+                auto phase = [&](const Vec3f& w) { const float f = float(henyeyGreenstein(g, double(d.dot(w)))); return Vec3f(f, f, f); };
+                out.L += toVec3f(beta) * directLightThroughMedia(scene, *emitters_, p, phase, sampler.get(dim), sampler.get(dim + 1), sampler.get(dim + 2), eps_, row.shadow, rng);
+                if (vertex == maxDepth_ || !survives(beta, vertex, sampler.get(dim + 6))) break;
+                wi = toVec3f(sampleHenyeyGreenstein(toVec3d(d), g, sampler.get(dim + 3), sampler.get(dim + 4)));  // weight 1: pdf = phase
+                o = p;
+            } else {
+                const Vec3f p = o + d * hit.t, wo = -d;
+                const Material& mat = scene.materials[accel.material(hit.geom, hit.prim)];
+                const bool front = hit.normal.dot(wo) > 0;
+                if (vertex == 1 && front && mat.emissive()) out.L += toVec3f(beta) * mat.emission;
+                const Vec3f n = front ? hit.normal : -hit.normal;
+                const Brdf brdf = Brdf::of(mat, model_);
+                auto reflect = [&](const Vec3f& w) { const float c = n.dot(w); return c > 0 ? brdf.eval(wo, w, n) * c : Vec3f(0, 0, 0); };
+                out.L += toVec3f(beta) * directLightThroughMedia(scene, *emitters_, p + n * eps_, reflect, sampler.get(dim), sampler.get(dim + 1), sampler.get(dim + 2), eps_, row.shadow, rng);
+                if (vertex == maxDepth_ || !survives(beta, vertex, sampler.get(dim + 6))) break;
+                wi = brdf.sample(wo, n, sampler.get(dim + 3), sampler.get(dim + 4), sampler.get(dim + 5));
+                const float cosI = n.dot(wi), pdf = brdf.pdf(wo, wi, n);
+                if (cosI <= 0 || !(pdf > 0)) break;
+                beta *= toVec3d(brdf.eval(wo, wi, n) * (cosI / pdf));
+                o = p + n * eps_;
+            }
+            d = wi;
+            ++counts.bounce;
+        }
+        if (!finite(out.L)) out.L = Vec3f(0, 0, 0);  // a degenerate sample must not poison the pixel
+        return out;
+    }
+
+    // Russian roulette after rr_depth vertices; survivors carry 1/q.
+    bool survives(Vec3d& beta, int vertex, float u) const {
+        if (vertex < rrDepth_) return true;
+        const double q = std::min(0.95, maxChannel(beta));
+        if (u >= q) return false;
+        beta /= q;
+        return true;
+    }
+
     int maxDepth_;
     int rrDepth_;
     bool jitter_;
     GlossyModel model_;
+    ShadowTracking tracking_;
     float eps_ = 1e-5f;
+    const Emitters* emitters_ = nullptr;  // during render()
 };
 
 const TechniqueRegistrar registrar{{
     "mesh.pathtrace",
-    "unbiased path tracing of meshes with next-event estimation (the reference for lighting techniques)",
+    "unbiased volumetric path tracing of meshes and volumes with next-event estimation (the reference for every technique)",
     ParamTable("mesh.pathtrace",
-               {intParam("max_depth", 8, 1, 1024, "surface interactions per path: 1 = direct light, 2 = one indirect bounce"),
+               {intParam("max_depth", 8, 1, 1024, "scattering events (surface or medium) per path: 1 = direct light (single scattering), 2 = one indirect bounce"),
                 intParam("rr_depth", 3, 1, 1024, "path vertices before Russian roulette may end a path"),
                 boolParam("jitter", true, "random positions inside each pixel (antialiasing); false: pixel centres, as a G-buffer sees them"),
-                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
+                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)"),
+                enumParam("shadow_tracking", "ratio", {"ratio", "delta"}, "transmittance of shadow rays through volumes: ratio tracking (smooth) or delta tracking (binary)")}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<PathTracer>(scene, p); },
     /*motionBlur=*/true,
-    /*renders=*/Content::Meshes,
+    /*renders=*/Content::VolumesAndMeshes,
 }};
 
 }  // namespace

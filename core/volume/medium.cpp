@@ -1,0 +1,267 @@
+#include "core/volume/medium.hpp"
+
+#include <openvdb/tools/Interpolation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/volume/volume_ray.hpp"
+
+namespace weft {
+
+namespace {
+
+// A ray that crosses absurd extinction (1e12 per voxel) in a trilinear ramp
+// would meet ~1e10 null collisions; past this many it is taken as opaque.
+// Ordinary media need orders of magnitude fewer.
+constexpr int kMaxCollisions = 1 << 16;
+
+double maxChannel(const Vec3d& v) { return std::max({v[0], v[1], v[2]}); }
+double minChannel(const Vec3d& v) { return std::min({v[0], v[1], v[2]}); }
+double mean(const Vec3d& v) { return (v[0] + v[1] + v[2]) / 3.0; }
+Vec3d abs3(const Vec3d& v) { return Vec3d(std::abs(v[0]), std::abs(v[1]), std::abs(v[2])); }
+
+double usableDensity(double rho) { return std::isfinite(rho) && rho > 0 ? rho : 0.0; }
+
+// Exponential free path at rate m from a uniform number.
+double freePath(double majorant, Rng& rng) { return -std::log1p(-rng.uniformDouble()) / majorant; }
+
+constexpr int kBrickLog2 = 3;  // 8^3 voxels, OpenVDB's leaf
+constexpr int kBrick = 1 << kBrickLog2;
+
+openvdb::Coord brickOf(const openvdb::Coord& voxel) {
+    return openvdb::Coord(voxel.x() >> kBrickLog2, voxel.y() >> kBrickLog2, voxel.z() >> kBrickLog2);
+}
+
+void raise(openvdb::FloatGrid::Accessor& acc, const openvdb::Coord& c, float v) {
+    if (v > acc.getValue(c)) acc.setValue(c, v);
+}
+
+// Largest usable density per brick, then spread to the 26 neighbours so a
+// brick's bound covers trilinear lookups that reach into the next brick.
+openvdb::FloatGrid::Ptr densityBricks(const openvdb::FloatGrid& grid) {
+    const float background = float(usableDensity(grid.background()));
+    auto raw = openvdb::FloatGrid::create(background), bricks = openvdb::FloatGrid::create(background);
+    auto rawAcc = raw->getAccessor(), acc = bricks->getAccessor();
+    for (auto it = grid.tree().cbeginValueAll(); it; ++it) {
+        const float v = float(usableDensity(*it));
+        if (v <= background) continue;
+        const openvdb::CoordBBox box = it.getBoundingBox();
+        if (box.volume() == 1) {
+            raise(rawAcc, brickOf(box.min()), v);
+            continue;
+        }
+        // A tile: every brick it covers (tiles are whole bricks or larger).
+        const openvdb::CoordBBox bb(brickOf(box.min()), brickOf(box.max()));
+        for (auto c = bb.begin(); c; ++c) raise(rawAcc, *c, v);
+    }
+    for (auto it = raw->cbeginValueOn(); it; ++it)
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) raise(acc, it.getCoord().offsetBy(dx, dy, dz), *it);
+    return bricks;
+}
+
+}  // namespace
+
+Medium::Medium(const std::vector<Volume>& volumes) {
+    for (const Volume& v : volumes) {
+        if (v.empty()) continue;
+        const double perWorld = 1.0 / v.voxelLength();
+        Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0, nullptr};
+        e.coefficientMax = maxChannel(e.absorb + e.scatter);
+        if (!(e.coefficientMax > 0)) continue;  // nothing to meet
+        e.bricks = densityBricks(*v.grid);
+        volumes_.push_back(e);
+    }
+}
+
+MediumRay::MediumRay(const Medium& medium) : medium_(medium) {
+    for (const auto& e : medium.volumes_) {
+        accessors_.push_back(e.volume->grid->getConstAccessor());
+        brickAccessors_.push_back(e.bricks->getConstAccessor());
+    }
+}
+
+// Amanatides-Woo in brick coordinates, parametrised by world distance.
+void MediumRay::startBricks(MediumSegment& s) {
+    const double t = s.t0;
+    const Vec3d p = (s.indexOrigin + s.indexStep * t) / double(kBrick), dir = s.indexStep / double(kBrick);
+    for (int a = 0; a < 3; ++a) {
+        s.brick[a] = int(std::floor(p[a]));
+        if (dir[a] > 0) s.crossing[a] = t + (s.brick[a] + 1 - p[a]) / dir[a], s.crossingStep[a] = 1 / dir[a];
+        else if (dir[a] < 0) s.crossing[a] = t + (s.brick[a] - p[a]) / dir[a], s.crossingStep[a] = -1 / dir[a];
+        else s.crossing[a] = s.crossingStep[a] = std::numeric_limits<double>::infinity();
+    }
+    s.exit = std::min({s.crossing[0], s.crossing[1], s.crossing[2], s.t1});
+    s.majorant = brickAccessors_[s.volume].getValue(s.brick) * medium_.volumes_[s.volume].coefficientMax;
+}
+
+void MediumRay::nextBrick(MediumSegment& s) {
+    const int a = s.crossing[0] <= s.crossing[1] ? (s.crossing[0] <= s.crossing[2] ? 0 : 2) : (s.crossing[1] <= s.crossing[2] ? 1 : 2);
+    s.brick[a] += s.indexStep[a] > 0 ? 1 : -1;
+    s.crossing[a] += s.crossingStep[a];
+    s.exit = std::min({s.crossing[0], s.crossing[1], s.crossing[2], s.t1});
+    s.majorant = brickAccessors_[s.volume].getValue(s.brick) * medium_.volumes_[s.volume].coefficientMax;
+}
+
+void MediumRay::reset(const Vec3d& origin, const Vec3d& dir, double tMax) {
+    segments_.clear();
+    end_ = 0;
+    for (std::uint32_t i = 0; i < medium_.volumes_.size(); ++i) {
+        const Medium::Entry& e = medium_.volumes_[i];
+        const auto& xf = e.volume->grid->transform();
+        const Vec3d io = xf.worldToIndex(origin), step = xf.worldToIndex(origin + dir) - io;
+        const double perWorld = step.length();  // index length per world length
+        if (!(perWorld > 0)) continue;
+        const auto clip = toIndexRay(Ray{origin, dir}, *e.volume);
+        if (!clip) continue;
+        MediumSegment s{i, clip->t0 / perWorld, std::min(clip->t1 / perWorld, tMax), 0.0, io, step, {}, {}, {}, 0.0};
+        if (!(s.t1 > s.t0)) continue;
+        startBricks(s);
+        segments_.push_back(s), end_ = std::max(end_, s.t1);
+    }
+}
+
+MajorantSpan MediumRay::majorantAt(double t) {
+    MajorantSpan span{0.0, end_};
+    for (MediumSegment& s : segments_) {
+        if (t < s.t0) {
+            span.next = std::min(span.next, s.t0);
+        } else if (t < s.t1) {
+            while (t >= s.exit) nextBrick(s);
+            span.majorant += s.majorant;
+            span.next = std::min(span.next, s.exit);
+        }
+    }
+    return span;
+}
+
+MediumCoefficients MediumRay::at(double t) {
+    MediumCoefficients c;
+    lobes_.clear();
+    for (const MediumSegment& s : segments_) {
+        if (t < s.t0 || t >= s.t1) continue;
+        const Medium::Entry& e = medium_.volumes_[s.volume];
+        const Vec3d ijk = s.indexOrigin + s.indexStep * t;
+        const double rho = usableDensity(openvdb::tools::BoxSampler::sample(accessors_[s.volume], ijk));
+        ++lookups;
+        const Vec3d scatter = e.scatter * rho;
+        c.extinction += e.absorb * rho + scatter;
+        c.scattering += scatter;
+        lobes_.push_back({e.volume->medium.g, scatter});
+    }
+    c.g = lobes_.size() == 1 ? lobes_[0].g : 0.0;
+    return c;
+}
+
+double MediumRay::pickPhase(Rng& rng, Vec3d& throughput) const {
+    if (lobes_.size() == 1) return lobes_[0].g;
+    Vec3d total(0.0);
+    double sum = 0;
+    for (const Lobe& l : lobes_) total += l.scattering, sum += mean(l.scattering);
+    if (!(sum > 0)) return 0.0;
+    double u = rng.uniformDouble() * sum;
+    for (const Lobe& l : lobes_) {
+        const double p = mean(l.scattering);
+        if (u >= p && &l != &lobes_.back()) {
+            u -= p;
+            continue;
+        }
+        if (!(p > 0)) break;  // only by rounding at the end of the list
+        for (int c = 0; c < 3; ++c) throughput[c] *= total[c] > 0 ? l.scattering[c] / total[c] * (sum / p) : 0.0;
+        return l.g;
+    }
+    throughput = Vec3d(0.0);
+    return 0.0;
+}
+
+double henyeyGreenstein(double g, double cosTheta) {
+    const double d = 1.0 + g * g - 2.0 * g * cosTheta;
+    return (1.0 - g * g) / (4.0 * M_PI * d * std::sqrt(d));
+}
+
+double sampleHenyeyGreensteinCos(double g, double u) {
+    if (std::abs(g) < 1e-3) return 1.0 - 2.0 * u;
+    const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
+    return std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+}
+
+Vec3d sampleHenyeyGreenstein(const Vec3d& d, double g, double u1, double u2) {
+    const double cosT = sampleHenyeyGreensteinCos(g, u1), sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
+    const double phi = 2.0 * M_PI * u2;
+    // An orthonormal frame around d (Duff et al. 2017).
+    const double sign = std::copysign(1.0, d.z()), a = -1.0 / (sign + d.z()), b = d.x() * d.y() * a;
+    const Vec3d t(1.0 + sign * d.x() * d.x() * a, sign * b, -sign * d.x()), bt(b, sign + d.y() * d.y() * a, -d.y());
+    return (t * (sinT * std::cos(phi)) + bt * (sinT * std::sin(phi)) + d * cosT).unitSafe();
+}
+
+// Both estimators walk the piecewise-constant majorant: a free path that
+// passes the end of a span restarts at it (exponentials are memoryless).
+template <class AtCollision>
+static bool trackCollisions(MediumRay& ray, Rng& rng, std::int64_t& collisions, const AtCollision& atCollision) {
+    double t = 0;
+    for (int n = 0; n < kMaxCollisions;) {
+        const MajorantSpan span = ray.majorantAt(t);
+        if (t >= ray.end()) return true;
+        if (!(span.majorant > 0)) {
+            t = span.next;
+            continue;
+        }
+        const double next = t + freePath(span.majorant, rng);
+        if (next >= span.next) {
+            t = span.next;
+            continue;
+        }
+        t = next, ++n, ++collisions;
+        if (!atCollision(t, span.majorant)) return true;
+    }
+    return false;  // capped: taken as opaque
+}
+
+Vec3d ratioTrackingTransmittance(MediumRay& ray, Rng& rng, std::int64_t& collisions) {
+    Vec3d T(1.0);
+    const bool done = trackCollisions(ray, rng, collisions, [&](double t, double m) {
+        const Vec3d s = ray.at(t).extinction;
+        for (int c = 0; c < 3; ++c) T[c] *= std::clamp(1.0 - s[c] / m, 0.0, 1.0);
+        return T[0] + T[1] + T[2] > 0.0;
+    });
+    return done ? T : Vec3d(0.0);
+}
+
+Vec3d deltaTrackingTransmittance(MediumRay& ray, Rng& rng, std::int64_t& collisions) {
+    Vec3d T(1.0);
+    const bool done = trackCollisions(ray, rng, collisions, [&](double t, double m) {
+        const Vec3d s = ray.at(t).extinction;
+        const double real = std::clamp(minChannel(s) / m, 0.0, 1.0);
+        if (rng.uniformDouble() < real) return T = Vec3d(0.0), false;
+        for (int c = 0; c < 3; ++c) T[c] *= std::clamp(1.0 - s[c] / m, 0.0, 1.0) / (1.0 - real);
+        return T[0] + T[1] + T[2] > 0.0;
+    });
+    return done ? T : Vec3d(0.0);
+}
+
+FreeFlight sampleFreeFlight(MediumRay& ray, Rng& rng, Vec3d& throughput, std::int64_t& collisions) {
+    FreeFlight flight;
+    const bool done = trackCollisions(ray, rng, collisions, [&](double t, double m) {
+        const MediumCoefficients c = ray.at(t);
+        Vec3d nullSigma(0.0);
+        for (int k = 0; k < 3; ++k) nullSigma[k] = std::max(0.0, m - c.extinction[k]);
+        const double ps = mean(abs3(throughput * c.scattering)), pn = mean(abs3(throughput * nullSigma));
+        if (!(ps + pn > 0)) return throughput = Vec3d(0.0), false;  // all absorbed
+        const double pScatter = ps / (ps + pn);
+        if (rng.uniformDouble() < pScatter) {
+            throughput *= c.scattering / (m * pScatter);
+            flight = {true, t, c};
+            flight.coefficients.g = ray.pickPhase(rng, throughput);
+            return false;
+        }
+        throughput *= nullSigma / (m * (1.0 - pScatter));
+        return true;
+    });
+    if (!done) throughput = Vec3d(0.0);
+    return flight;
+}
+
+}  // namespace weft
