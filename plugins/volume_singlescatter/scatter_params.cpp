@@ -45,6 +45,7 @@ Camera vdbRenderCamera(const ParamSet& p, const Scene& scene, double aspect) {
     cam.up = vec3(p, "up");
     if (p.wasSet("lookat")) cam.target = vec3(p, "lookat");
     else {
+        if (scene.volumes.empty()) throw Error("volume.singlescatter: compat=vdb_render needs lookat or rotate in a scene without volumes");
         const Volume& v = scene.volumes.front();
         cam.target = v.grid->transform().indexToWorld(v.grid->evalActiveVoxelBoundingBox().getCenter());
     }
