@@ -146,8 +146,7 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
     for (Crossing& c : row.crossings) {
         const ScatterVolume& v = volumes_[c.volume];
         const bool unit = v.uniform && v.voxelLength == unitLength;  // index units are march units exactly
-        const double indexSpeed = v.volume->grid->transform().baseMap()->applyInverseJacobian(ray.dir).length();
-        c.perU = unit ? 1.0 : unitLength * indexSpeed / speed;
+        c.perU = unit ? 1.0 : unitLength * v.indexSpeed(ray.dir) / speed;
         c.depthScale = unit ? 1.0 : unitLength / v.voxelLength;
         row.volumes[c.volume].primary.hits(row.hits);
         for (const auto& h : row.hits) row.spans.push_back({h.t0 / c.perU, h.t1 / c.perU});
@@ -162,7 +161,8 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
         row.spans.swap(merged);
     }
     const Crossing& first = row.crossings.front();
-    const double uSurface = tSurface * volumes_[first.volume].volume->grid->transform().baseMap()->applyInverseJacobian(ray.dir).length() / first.perU;
+    const double uSurface = std::isfinite(tSurface) ? tSurface * volumes_[first.volume].indexSpeed(ray.dir) / first.perU : tSurface;
+    if (row.crossings.size() == 1) return marchOne(ray, uSurface, offset, row, rng, T, L);
     const double h = params_.step;
     for (const Span& span : row.spans) {
         for (double t = h * (std::ceil(span.t0 / h - offset) + offset); t <= span.t1; t += h) {
@@ -186,6 +186,34 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
         }
     }
     return true;
+}
+
+// One volume on the ray, the common case: its lookups hoisted out of the loop.
+bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const {
+    const Crossing& c = row.crossings.front();
+    const ScatterVolume& v = volumes_[c.volume];
+    Sampler& sampler = row.volumes[c.volume].sampler;
+    row.shares.assign(1, Share{c.volume, 0.0});
+    const double h = params_.step, cutoff = params_.cutoff;
+    std::int64_t n = 0;
+    bool more = true;
+    for (const Span& span : row.spans) {
+        for (double t = h * (std::ceil(span.t0 / h - offset) + offset); t <= span.t1 && more; t += h) {
+            if (t >= uSurface) break;
+            const Vec3d pw = v.worldPos(c.ray, t * c.perU);
+            const double rho = finiteDensity(sampler.wsSample(pw));
+            ++n;
+            if (rho < cutoff) continue;
+            row.shares[0].weight = rho * c.depthScale;
+            const Vec3d dT = expNeg(v.sigmaT * (row.shares[0].weight * h));
+            L += inscatter(pw, ray.dir, row.shares, v.sigmaT, row, rng) * T * (Vec3d(1.0) - dT);
+            T *= dT;
+            more = T.lengthSqr() >= cutoff;
+        }
+        if (!more) break;
+    }
+    row.counts.samples += n;
+    return more;
 }
 
 double ScatterTracer::phase(const ScatterVolume& v, double cosTheta) const {

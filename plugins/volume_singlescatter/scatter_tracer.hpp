@@ -54,6 +54,7 @@ private:
         double weight;  // density x its voxel lengths per march unit
     };
     bool marchVolumes(const Ray& ray, double tSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const;
+    bool marchOne(const Ray& ray, double uSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const;
     Vec3d inscatter(const Vec3d& p, const Vec3d& viewDir, const std::vector<Share>& shares, const Vec3d& sigmaT,
                     Row& row, Rng& rng) const;
     Vec3d shadow(std::size_t light, const Vec3d& p, const Vec3d& toLight, double distance, std::size_t receiver, Row& row,

@@ -32,6 +32,7 @@ std::vector<ScatterVolume> scatterVolumes(const Scene& scene, const ScatterParam
         v.majorantDensity = std::max(std::abs(vol.valueMin), std::abs(vol.valueMax));
         v.voxelLength = vol.voxelLength();
         v.uniform = vol.grid->transform().hasUniformScale();
+        v.map = vol.grid->transform().baseMap().get();
         out.push_back(std::move(v));
     }
     return out;

@@ -27,14 +27,17 @@ struct ScatterVolume {
     double majorantDensity = 0;                   // bounds |density|
     double voxelLength = 1;
     bool uniform = true;                          // index units are voxel lengths exactly
+    const openvdb::math::MapBase* map = nullptr;  // the grid's index-to-world map (no shared_ptr copies per ray)
 
     // The world ray in index space, as OpenVDB maps it (t counts voxels).
     VdbRay indexRay(const VdbRay& world) const { return world.worldToIndex(*volume->grid); }
     // Voxel lengths per index unit along a unit index-space direction (1 on uniform grids).
     double voxelLengthsPerIndexUnit(const Vec3d& indexDir) const {
         if (uniform) return 1.0;
-        return volume->grid->transform().baseMap()->applyJacobian(indexDir).length() / voxelLength;
+        return map->applyJacobian(indexDir).length() / voxelLength;
     }
+    // Index units per unit of a world ray's parameter.
+    double indexSpeed(const Vec3d& worldDir) const { return map->applyInverseJacobian(worldDir).length(); }
     Vec3d worldPos(const VdbRay& indexRay, double t) const { return volume->grid->indexToWorld(indexRay(t)); }
 };
 
