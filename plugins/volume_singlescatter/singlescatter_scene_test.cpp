@@ -178,3 +178,19 @@ TEST(SingleScatterScene, CombinedImageDiffersFromVolumeOnlyAndMeshOnly) {
     EXPECT_GT(shadowed, 10);
     EXPECT_GT(filled, 100);
 }
+
+TEST(SingleScatterScene, AMeshBeyondAPointLightCastsNoShadow) {
+    // Point light above the sphere, a roof above the light: nothing in between.
+    test::TempDir dir;
+    writeQuad(dir.path(), "roof", 2.5, 0.5);
+    const std::string light = R"([{"type": "point", "position": [0, 1.5, 0], "intensity": 4}])";
+    const std::string sphere = R"({"procedural": "sphere", "resolution": 32, )" + medium(0.01, 0.1) + "}";
+    const std::string open = writeScene(dir, "open.json", sceneText(kFront, sphere, "", light));
+    const std::string roofed = writeScene(dir, "roofed.json", sceneText(kFront, sphere, R"({"file": "roof.obj"})", light));
+    for (const char* estimator : {"cached", "raymarch"}) {
+        const std::vector<std::string> sets{std::string("estimator=") + estimator};
+        const RenderOutcome a = test::render(open, "17x17", sets, kTech), b = test::render(roofed, "17x17", sets, kTech);
+        EXPECT_GT(a.image.at(8, 8, 0), 0.05) << estimator;
+        EXPECT_NEAR(b.image.at(8, 8, 0), a.image.at(8, 8, 0), 1e-6) << estimator;
+    }
+}
