@@ -1,16 +1,14 @@
 #include "plugins/volume_singlescatter/light_cache.hpp"
 
-#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/Morphology.h>
 #include <openvdb/tree/LeafManager.h>
 
 #include <cmath>
+#include <limits>
 
 namespace weft {
 
 namespace {
-
-using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
 
 int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -39,68 +37,98 @@ openvdb::FloatGrid::Ptr cacheTopology(const openvdb::FloatGrid& density, int fac
     return cache;
 }
 
-class PathMarcher {
-public:
-    PathMarcher(const Volume& volume, const DirectionalOrPointLight& light, const LightCacheSettings& s)
-        : volume_(volume), light_(light), s_(s), acc_(volume.grid->getConstAccessor()),
-          sampler_(acc_, volume.grid->transform()), box_(volume.indexBox()) {
-        const auto& xf = volume.grid->transform();
-        if (!light.isPoint) dirIndex_ = (xf.worldToIndex(light.toLight) - xf.worldToIndex(Vec3d(0))).unitSafe();
-        lightIndex_ = xf.worldToIndex(light.position);
-        stopDepth_ = s.sigmaMin > 0 ? std::log(1e4) / s.sigmaMin : std::numeric_limits<double>::infinity();
-    }
-
-    float densityPath(const Vec3d& x) {
-        Vec3d dir = dirIndex_;
-        double tMax = std::numeric_limits<double>::infinity();
-        if (light_.isPoint) {
-            dir = lightIndex_ - x;
-            tMax = dir.length();
-            dir = dir.unitSafe();
-        }
-        tMax = std::min(tMax, exitDistance(x, dir));
-        double D = 0;
-        for (double t = 0.5 * s_.step; t < tMax; t += s_.step) {
-            const double rho = sampler_.isSample(x + dir * t);
-            if (std::isfinite(rho) && rho >= s_.cutoff) D += rho * s_.step / (1.0 + s_.gain * t);
-            if (D > stopDepth_) break;
-        }
-        return float(D);
-    }
-
-private:
-    // Distance from x along dir to leaving the volume's index box.
-    double exitDistance(const Vec3d& x, const Vec3d& dir) const {
-        double t = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 3; ++a) {
-            if (dir[a] > 1e-12) t = std::min(t, (box_.max()[a] + 0.5 - x[a]) / dir[a]);
-            else if (dir[a] < -1e-12) t = std::min(t, (box_.min()[a] - 0.5 - x[a]) / dir[a]);
-        }
-        return std::max(0.0, t);
-    }
-
-    const Volume& volume_;
-    const DirectionalOrPointLight& light_;
-    LightCacheSettings s_;
-    openvdb::FloatGrid::ConstAccessor acc_;
-    Sampler sampler_;
-    openvdb::CoordBBox box_;
-    Vec3d dirIndex_, lightIndex_;
-    double stopDepth_;
-};
+// Sets every active voxel of `cache` to value(world position of the voxel), in parallel.
+template <class Make, class Value>
+void fillCache(openvdb::FloatGrid& cache, const Make& makeState, const Value& value) {
+    const openvdb::math::Transform& cacheXf = cache.transform();
+    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(cache.tree());
+    leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
+        auto state = makeState();
+        for (auto it = leaf.beginValueOn(); it; ++it) it.setValue(value(*state, cacheXf.indexToWorld(it.getCoord())));
+    });
+}
 
 }  // namespace
 
-openvdb::FloatGrid::Ptr buildLightCache(const Volume& volume, const DirectionalOrPointLight& light,
+PathMarcher::PathMarcher(const Volume& occluder, const DirectionalOrPointLight& light, const LightCacheSettings& s)
+    : occluder_(occluder), light_(light), s_(s), acc_(occluder.grid->getConstAccessor()),
+      sampler_(acc_, occluder.grid->transform()), box_(occluder.indexBox()), voxelLength_(occluder.voxelLength()),
+      uniform_(occluder.grid->transform().hasUniformScale()) {
+    const auto& xf = occluder.grid->transform();
+    if (!light.isPoint) dirIndex_ = (xf.worldToIndex(light.toLight) - xf.worldToIndex(Vec3d(0))).unitSafe();
+    lightIndex_ = xf.worldToIndex(light.position);
+    stopDepth_ = s.sigmaMin > 0 ? std::log(1e4) / s.sigmaMin : std::numeric_limits<double>::infinity();
+}
+
+// Voxel lengths per index unit along an index-space direction: 1 on uniform grids.
+double PathMarcher::voxelLengthsPerIndexUnit(const Vec3d& dir) const {
+    if (uniform_) return 1.0;
+    return occluder_.grid->transform().baseMap()->applyJacobian(dir).length() / voxelLength_;
+}
+
+float PathMarcher::densityPath(const Vec3d& x) {
+    Vec3d dir = dirIndex_;
+    double tMax = std::numeric_limits<double>::infinity();
+    if (light_.isPoint) {
+        dir = lightIndex_ - x;
+        tMax = dir.length();
+        dir = dir.unitSafe();
+    }
+    tMax = std::min(tMax, exitDistance(x, dir));
+    const double k = voxelLengthsPerIndexUnit(dir), step = s_.step / k;  // index units per step
+    // Points outside the box (another volume's voxels, surfaces) start at
+    // the entry; samples before it read nothing, so skipping them changes nothing.
+    const double tEnter = entryDistance(x, dir);
+    double D = 0;
+    for (double t = 0.5 * step; t < tMax; t += step) {
+        if (t < tEnter) continue;
+        const double rho = sampler_.isSample(x + dir * t);
+        if (std::isfinite(rho) && rho >= s_.cutoff) D += rho * s_.step / (1.0 + s_.gain * (t * k));
+        if (D > stopDepth_) break;
+    }
+    return float(D);
+}
+
+// Distance from x along dir to leaving the volume's index box.
+double PathMarcher::exitDistance(const Vec3d& x, const Vec3d& dir) const {
+    double t = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] > 1e-12) t = std::min(t, (box_.max()[a] + 0.5 - x[a]) / dir[a]);
+        else if (dir[a] < -1e-12) t = std::min(t, (box_.min()[a] - 0.5 - x[a]) / dir[a]);
+    }
+    return std::max(0.0, t);
+}
+
+// Distance from x along dir to entering the box (0 inside; beyond any exit when it misses).
+double PathMarcher::entryDistance(const Vec3d& x, const Vec3d& dir) const {
+    double t = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double lo = box_.min()[a] - 0.5, hi = box_.max()[a] + 0.5;
+        if (dir[a] > 1e-12) t = std::max(t, (lo - x[a]) / dir[a]);
+        else if (dir[a] < -1e-12) t = std::max(t, (hi - x[a]) / dir[a]);
+        else if (x[a] < lo || x[a] > hi) return std::numeric_limits<double>::infinity();
+    }
+    return t;
+}
+
+openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const DirectionalOrPointLight& light,
                                         const LightCacheSettings& settings) {
-    openvdb::FloatGrid::Ptr cache = cacheTopology(*volume.grid, std::max(1, settings.coarsening));
-    const openvdb::math::Transform& cacheXf = cache->transform();
-    const openvdb::math::Transform& densityXf = volume.grid->transform();
-    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(cache->tree());
-    leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
-        PathMarcher marcher(volume, light, settings);
-        for (auto it = leaf.beginValueOn(); it; ++it)
-            it.setValue(marcher.densityPath(densityXf.worldToIndex(cacheXf.indexToWorld(it.getCoord()))));
+    openvdb::FloatGrid::Ptr cache = cacheTopology(*receiver.grid, std::max(1, settings.coarsening));
+    const openvdb::math::Transform& occluderXf = occluder.grid->transform();
+    fillCache(*cache, [&] { return std::make_unique<PathMarcher>(occluder, light, settings); },
+              [&](PathMarcher& marcher, const Vec3d& p) { return marcher.densityPath(occluderXf.worldToIndex(p)); });
+    return cache;
+}
+
+openvdb::FloatGrid::Ptr buildVisibilityCache(const Volume& receiver, const MeshAccel& accel,
+                                             const DirectionalOrPointLight& light, int coarsening) {
+    openvdb::FloatGrid::Ptr cache = cacheTopology(*receiver.grid, std::max(1, coarsening));
+    fillCache(*cache, [] { return std::make_unique<int>(0); }, [&](int&, const Vec3d& p) {
+        Vec3d to = light.toLight;
+        double distance = std::numeric_limits<double>::infinity();
+        if (light.isPoint) to = light.position - p, distance = to.length(), to = to.unitSafe();
+        const Vec3f o(float(p.x()), float(p.y()), float(p.z())), d(float(to.x()), float(to.y()), float(to.z()));
+        return accel.occluded(o, d, 0.0f, float(distance * (1 - 1e-4))) ? 0.0f : 1.0f;
     });
     return cache;
 }

@@ -45,6 +45,7 @@ Camera vdbRenderCamera(const ParamSet& p, const Scene& scene, double aspect) {
     cam.up = vec3(p, "up");
     if (p.wasSet("lookat")) cam.target = vec3(p, "lookat");
     else {
+        if (scene.volumes.empty()) throw Error("volume.singlescatter: compat=vdb_render needs lookat or rotate in a scene without volumes");
         const Volume& v = scene.volumes.front();
         cam.target = v.grid->transform().indexToWorld(v.grid->evalActiveVoxelBoundingBox().getCenter());
     }
@@ -104,13 +105,13 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
 std::vector<ParamSpec> scatterParamSpecs() {
     return {
         enumParam("compat", "none", {"none", "vdb_render"}, "vdb_render: accept its camera options and build its camera"),
-        stringParam("absorb", "0.1,0.1,0.1", "absorption coefficients R,G,B per voxel per unit density", listCheck(3, 3)),
-        stringParam("scatter", "1.5,1.5,1.5", "scattering coefficients R,G,B per voxel per unit density", listCheck(3, 3)),
+        stringParam("absorb", "0.1,0.1,0.1", "absorption coefficients R,G,B per voxel length per unit density (set: wins over the scene's media)", listCheck(3, 3)),
+        stringParam("scatter", "1.5,1.5,1.5", "scattering coefficients R,G,B per voxel length per unit density (set: wins over the scene's media)", listCheck(3, 3)),
         stringParam("light", "0.3,0.3,0,0.7,0.7,0.7", "directional light X,Y,Z towards the light [,R,G,B] (scene lights win unless set)", listCheck(3, 6)),
         floatParam("gain", 0.2, 0, 1e3, "scatter along the shadow ray: extinction there divided by 1 + gain * distance"),
         floatParam("cutoff", 0.005, 0, 1, "densities below it are empty; rays stop once |T|^2 falls below it"),
-        floatParam("step", 1, 1e-3, 64, "primary-ray step in voxels"),
-        floatParam("shadowstep", 3, 1e-3, 64, "shadow-ray step in voxels (raymarch and the cache)"),
+        floatParam("step", 1, 1e-3, 64, "primary-ray step in voxel lengths (cube root of a voxel's volume) of the finest volume crossed"),
+        floatParam("shadowstep", 3, 1e-3, 64, "shadow-ray step in voxel lengths of the volume crossed (raymarch and the cache)"),
         enumParam("estimator", "cached", {"cached", "ratio", "raymarch"},
                   "shadow transmittance: cached grid, ratio tracking (unbiased), or vdb_render's march"),
         intParam("cache_voxel", 2, 1, 16, "light cache voxel size, in density voxels (estimator=cached)"),

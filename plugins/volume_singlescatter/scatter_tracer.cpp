@@ -1,0 +1,336 @@
+#include "plugins/volume_singlescatter/scatter_tracer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/base/counters.hpp"
+#include "core/lighting/brdf.hpp"
+#include "core/lighting/surface_shading.hpp"
+#include "core/volume/transmittance.hpp"
+
+namespace weft {
+
+namespace {
+
+using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
+
+// NaN or Inf voxels (a broken simulation) read as empty, never as NaN light.
+double finiteDensity(double rho) { return std::isfinite(rho) ? rho : 0.0; }
+
+Vec3d expNeg(const Vec3d& v) { return Vec3d(std::exp(-v[0]), std::exp(-v[1]), std::exp(-v[2])); }
+
+double henyeyGreenstein(double g, double cosTheta) {  // normalised so that isotropic is 1
+    const double d = 1.0 + g * g - 2.0 * g * cosTheta;
+    return (1.0 - g * g) / (d * std::sqrt(d));
+}
+
+struct GridLookup {  // built in place: the sampler points at the accessor
+    openvdb::FloatGrid::ConstAccessor acc;
+    Sampler sampler;
+    explicit GridLookup(const openvdb::FloatGrid& g) : acc(g.getConstAccessor()), sampler(acc, g.transform()) {}
+};
+
+struct VolumeLookup : GridLookup {
+    VdbIntersector primary, shadow;
+    explicit VolumeLookup(const ScatterVolume& v) : GridLookup(*v.volume->grid), primary(*v.intersector), shadow(*v.intersector) {}
+};
+
+struct Crossing {  // one volume on the current camera ray
+    std::size_t volume;
+    VdbRay ray;         // index space
+    double perU;        // index units per march unit
+    double depthScale;  // voxel lengths per march unit
+};
+
+struct Span {
+    double t0, t1;  // march units
+};
+
+// Light towards p: unit direction, distance, and radiance scale.
+struct LightAt {
+    Vec3d toLight, color;
+    double distance;
+    bool valid;
+};
+
+LightAt lightAt(const DirectionalOrPointLight& light, const Vec3d& p) {
+    if (!light.isPoint) return {light.toLight, light.color, std::numeric_limits<double>::infinity(), true};
+    Vec3d to = light.position - p;
+    const double d = to.length();
+    if (d < 1e-12) return {to, light.color, d, false};
+    return {to / d, light.color / (d * d), d, true};
+}
+
+Vec3f toFloat(const Vec3d& v) { return Vec3f(float(v.x()), float(v.y()), float(v.z())); }
+
+}  // namespace
+
+class ScatterTracer::Row {
+public:
+    std::deque<VolumeLookup> volumes;
+    std::deque<GridLookup> density, visibility;
+    std::deque<PathMarcher> marchers;  // [light][occluder], for surfaces
+    std::vector<Crossing> crossings;
+    std::vector<Span> spans;
+    std::vector<VdbRay::TimeSpan> hits;
+    std::vector<Share> shares;
+    Counts counts;
+};
+
+ScatterTracer::ScatterTracer(const Scene& scene, const ScatterParams& params, std::vector<ScatterVolume> volumes,
+                             const MeshAccel* accel, float eps)
+    : scene_(scene), params_(params), volumes_(std::move(volumes)), accel_(accel), eps_(eps) {}
+
+static LightCacheSettings cacheSettings(const ScatterParams& p, const ScatterVolume& occluder) {
+    const double sigmaMin = std::min({occluder.sigmaT[0], occluder.sigmaT[1], occluder.sigmaT[2]});
+    return {p.shadowStep, p.gain, p.cutoff, sigmaMin, p.cacheCoarsening};
+}
+
+void ScatterTracer::buildCaches(RenderContext& ctx) {
+    ScopedTimer timer(ctx.timings, "light_cache");
+    std::int64_t voxels = 0;
+    for (const DirectionalOrPointLight& light : params_.lights)
+        for (const ScatterVolume& receiver : volumes_) {
+            for (const ScatterVolume& occluder : volumes_) {
+                densityCaches_.push_back(buildLightCache(*receiver.volume, *occluder.volume, light, cacheSettings(params_, occluder)));
+                voxels += std::int64_t(densityCaches_.back()->activeVoxelCount());
+            }
+            if (accel_) visibilityCaches_.push_back(buildVisibilityCache(*receiver.volume, *accel_, light, params_.cacheCoarsening));
+        }
+    ctx.counters.add("light_cache.voxels", voxels);
+}
+
+void ScatterTracer::RowDeleter::operator()(Row* row) const { delete row; }
+
+std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> ScatterTracer::row() const {
+    std::unique_ptr<Row, RowDeleter> row(new Row);
+    for (const ScatterVolume& v : volumes_) row->volumes.emplace_back(v);
+    for (const auto& c : densityCaches_) row->density.emplace_back(*c);
+    for (const auto& c : visibilityCaches_) row->visibility.emplace_back(*c);
+    if (accel_ && params_.estimator == ShadowEstimator::Cached)
+        for (const DirectionalOrPointLight& light : params_.lights)
+            for (const ScatterVolume& v : volumes_) row->marchers.emplace_back(*v.volume, light, cacheSettings(params_, v));
+    return row;
+}
+
+const ScatterTracer::Counts& ScatterTracer::counts(const Row& row) { return row.counts; }
+
+Vec3d ScatterTracer::radiance(const Ray& ray, float offset, Row& row, Rng& rng, Vec3d& T, bool& surface) const {
+    Vec3d L(0.0);
+    SurfaceHit hit;
+    if (accel_) hit = firstSurface(*accel_, ray);
+    surface = hit.valid();
+    const double tSurface = surface ? double(hit.t) : std::numeric_limits<double>::infinity();
+    if (!marchVolumes(ray, tSurface, offset, row, rng, T, L) || !surface) return L;
+    return L + T * surfaceRadiance(ray, hit, row, rng);
+}
+
+// The volumes this ray crosses, in march units u (voxel lengths of the
+// finest one), with their occupied spans merged; samples sit at
+// u = step * (k + offset) for integer k (offset 0: vdb_render's
+// step * ceil(t0 / step) phase). False once the ray is opaque.
+bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const {
+    const VdbRay wray(ray.origin, ray.dir);
+    row.crossings.clear();
+    double unitLength = std::numeric_limits<double>::max();
+    for (std::size_t i = 0; i < volumes_.size(); ++i) {
+        const VdbRay iray = volumes_[i].indexRay(wray);
+        if (!row.volumes[i].primary.setIndexRay(iray)) continue;
+        row.crossings.push_back({i, iray, 0, 0});
+        unitLength = std::min(unitLength, volumes_[i].voxelLength);
+    }
+    if (row.crossings.empty()) return true;
+    const double speed = ray.dir.length();
+    row.spans.clear();
+    for (Crossing& c : row.crossings) {
+        const ScatterVolume& v = volumes_[c.volume];
+        const bool unit = v.uniform && v.voxelLength == unitLength;  // index units are march units exactly
+        c.perU = unit ? 1.0 : unitLength * v.indexSpeed(ray.dir) / speed;
+        c.depthScale = unit ? 1.0 : unitLength / v.voxelLength;
+        row.volumes[c.volume].primary.hits(row.hits);
+        for (const auto& h : row.hits) row.spans.push_back({h.t0 / c.perU, h.t1 / c.perU});
+    }
+    if (row.crossings.size() > 1) {
+        std::sort(row.spans.begin(), row.spans.end(), [](const Span& a, const Span& b) { return a.t0 < b.t0; });
+        std::vector<Span> merged;
+        for (const Span& s : row.spans) {
+            if (!merged.empty() && s.t0 <= merged.back().t1) merged.back().t1 = std::max(merged.back().t1, s.t1);
+            else merged.push_back(s);
+        }
+        row.spans.swap(merged);
+    }
+    const Crossing& first = row.crossings.front();
+    const double uSurface = std::isfinite(tSurface) ? tSurface * volumes_[first.volume].indexSpeed(ray.dir) / first.perU : tSurface;
+    if (row.crossings.size() == 1) return marchOne(ray, uSurface, offset, row, rng, T, L);
+    const double h = params_.step;
+    for (const Span& span : row.spans) {
+        for (double t = h * (std::ceil(span.t0 / h - offset) + offset); t <= span.t1; t += h) {
+            if (t >= uSurface) return true;
+            const Vec3d pw = volumes_[first.volume].worldPos(first.ray, t * first.perU);
+            row.shares.clear();
+            Vec3d sigma(0.0);
+            for (const Crossing& c : row.crossings) {
+                const double rho = finiteDensity(row.volumes[c.volume].sampler.wsSample(pw));
+                ++row.counts.samples;
+                if (rho < params_.cutoff) continue;
+                row.shares.push_back({c.volume, rho * c.depthScale});
+                sigma += volumes_[c.volume].sigmaT * row.shares.back().weight;
+            }
+            if (row.shares.empty()) continue;
+            const Vec3d dT = row.shares.size() == 1 ? expNeg(volumes_[row.shares[0].volume].sigmaT * (row.shares[0].weight * h))
+                                                    : expNeg(sigma * h);
+            L += inscatter(pw, ray.dir, row.shares, sigma, row, rng) * T * (Vec3d(1.0) - dT);
+            T *= dT;
+            if (T.lengthSqr() < params_.cutoff) return false;
+        }
+    }
+    return true;
+}
+
+// One volume on the ray, the common case: its lookups hoisted out of the loop.
+bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const {
+    const Crossing& c = row.crossings.front();
+    const ScatterVolume& v = volumes_[c.volume];
+    Sampler& sampler = row.volumes[c.volume].sampler;
+    row.shares.assign(1, Share{c.volume, 0.0});
+    const double h = params_.step, cutoff = params_.cutoff;
+    std::int64_t n = 0;
+    bool more = true;
+    for (const Span& span : row.spans) {
+        for (double t = h * (std::ceil(span.t0 / h - offset) + offset); t <= span.t1 && more; t += h) {
+            if (t >= uSurface) break;
+            const Vec3d pw = v.worldPos(c.ray, t * c.perU);
+            const double rho = finiteDensity(sampler.wsSample(pw));
+            ++n;
+            if (rho < cutoff) continue;
+            row.shares[0].weight = rho * c.depthScale;
+            const Vec3d dT = expNeg(v.sigmaT * (row.shares[0].weight * h));
+            L += inscatter(pw, ray.dir, row.shares, v.sigmaT, row, rng) * T * (Vec3d(1.0) - dT);
+            T *= dT;
+            more = T.lengthSqr() >= cutoff;
+        }
+        if (!more) break;
+    }
+    row.counts.samples += n;
+    return more;
+}
+
+double ScatterTracer::phase(const ScatterVolume& v, double cosTheta) const {
+    return v.phase == Phase::Isotropic ? 1.0 : henyeyGreenstein(v.g, cosTheta);
+}
+
+// Light arriving at world point p, times albedo and phase, summed over
+// lights; several volumes scatter in proportion to sigma_s of each.
+Vec3d ScatterTracer::inscatter(const Vec3d& p, const Vec3d& viewDir, const std::vector<Share>& shares, const Vec3d& sigmaT,
+                               Row& row, Rng& rng) const {
+    Vec3d sum(0.0);
+    for (std::size_t i = 0; i < params_.lights.size(); ++i) {
+        const LightAt l = lightAt(params_.lights[i], p);
+        if (!l.valid) continue;
+        const double cosTheta = l.toLight.dot(viewDir);
+        const Vec3d shadowT = shadow(i, p, l.toLight, l.distance, shares.front().volume, row, rng);
+        if (shares.size() == 1) {
+            const ScatterVolume& v = volumes_[shares.front().volume];
+            sum += l.color * v.albedo * shadowT * phase(v, cosTheta);
+            continue;
+        }
+        Vec3d mix(0.0);
+        for (const Share& s : shares)
+            mix += volumes_[s.volume].sigmaT * volumes_[s.volume].albedo * (s.weight * phase(volumes_[s.volume], cosTheta));
+        for (int c = 0; c < 3; ++c) mix[c] = sigmaT[c] > 0 ? mix[c] / sigmaT[c] : 0.0;
+        sum += l.color * mix * shadowT;
+    }
+    return sum;
+}
+
+// Transmittance from p (inside `receiver`) to the light: the cache, or shadow rays.
+Vec3d ScatterTracer::shadow(std::size_t light, const Vec3d& p, const Vec3d& toLight, double distance, std::size_t receiver,
+                            Row& row, Rng& rng) const {
+    if (params_.estimator != ShadowEstimator::Cached) return tracedShadow(p, toLight, distance, row, rng);
+    Vec3d T(1.0);
+    for (std::size_t o = 0; o < volumes_.size(); ++o) {
+        ++row.counts.shadowSamples;
+        T *= expNeg(volumes_[o].sigmaT * row.density[cacheIndex(light, receiver, o)].sampler.wsSample(p));
+    }
+    if (accel_) T *= std::clamp(double(row.visibility[light * volumes_.size() + receiver].sampler.wsSample(p)), 0.0, 1.0);
+    return T;
+}
+
+// Shadow rays: the meshes (Embree), then every volume (ratio tracking or the fixed-step march).
+Vec3d ScatterTracer::tracedShadow(const Vec3d& p, const Vec3d& toLight, double distance, Row& row, Rng& rng) const {
+    if (accel_) {
+        ++row.counts.meshShadowRays;
+        if (accel_->occluded(toFloat(p), toFloat(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
+    }
+    Vec3d T(1.0);
+    for (std::size_t o = 0; o < volumes_.size(); ++o) T = shadowThrough(o, p, toLight, distance, row, rng, T);
+    return T;
+}
+
+// T times the transmittance of one volume along the shadow ray.
+Vec3d ScatterTracer::shadowThrough(std::size_t volume, const Vec3d& p, const Vec3d& toLight, double distance, Row& row,
+                                   Rng& rng, Vec3d T) const {
+    const ScatterVolume& v = volumes_[volume];
+    VolumeLookup& look = row.volumes[volume];
+    // vdb_render's shadow rays start at t = Delta, so the first fixed step
+    // lands one step away from p; the intersector works in index times.
+    const VdbRay iray = v.indexRay(VdbRay(p, toLight, openvdb::math::Delta<double>::value(), distance));
+    if (!look.shadow.setIndexRay(iray)) return T;
+    look.shadow.hits(row.hits);
+    const double k = v.voxelLengthsPerIndexUnit(iray.dir());  // 1 on uniform grids
+    auto sigma = [&](double t) {
+        const double rho = finiteDensity(look.sampler.wsSample(v.worldPos(iray, t)));
+        ++row.counts.shadowSamples;
+        return rho < params_.cutoff ? Vec3d(0.0) : v.sigmaT * (rho * k / (1.0 + (t * k) * params_.gain));
+    };
+    for (const auto& span : row.hits) {
+        if (params_.estimator == ShadowEstimator::Raymarch) {
+            T = marchTransmittance(sigma, span.t0, span.t1, params_.shadowStep / k, params_.cutoff, T);
+            if (T.lengthSqr() < params_.cutoff) break;
+        } else {
+            const double majorant = std::max({v.sigmaT[0], v.sigmaT[1], v.sigmaT[2]}) * v.majorantDensity * k;
+            T *= ratioTracking(sigma, span.t0, span.t1, majorant, rng);
+        }
+    }
+    return T;
+}
+
+// Emission plus the lights on the Lambert + glossy BRDF, through meshes and volumes.
+Vec3d ScatterTracer::surfaceRadiance(const Ray& ray, const SurfaceHit& hit, Row& row, Rng& rng) const {
+    const Vec3d p = ray.origin + ray.dir * double(hit.t);
+    const Vec3f wo = -toFloat(ray.dir).unitSafe();
+    const Material& mat = scene_.materials[accel_->material(hit.geom, hit.prim)];
+    const bool front = hit.normal.dot(wo) > 0;
+    const Vec3f n = front ? hit.normal : -hit.normal;
+    const Brdf brdf = Brdf::of(mat);
+    const Vec3d origin = p + Vec3d(n.x(), n.y(), n.z()) * double(eps_);
+    Vec3d L(0.0);
+    if (front && mat.emissive()) L = Vec3d(mat.emission.x(), mat.emission.y(), mat.emission.z());
+    for (std::size_t i = 0; i < params_.lights.size(); ++i) {
+        const LightAt l = lightAt(params_.lights[i], origin);
+        const Vec3f wi = toFloat(l.toLight);
+        const float cosI = n.dot(wi);
+        if (!l.valid || cosI <= 0) continue;
+        const Vec3f f = brdf.eval(wo, wi, n) * cosI;
+        L += Vec3d(f.x(), f.y(), f.z()) * l.color * surfaceShadow(i, origin, l.toLight, l.distance, row, rng);
+    }
+    return L;
+}
+
+// The cached estimator marches the cache's rule from the surface point
+// itself (surfaces lie outside the volumes' cache voxels).
+Vec3d ScatterTracer::surfaceShadow(std::size_t light, const Vec3d& p, const Vec3d& toLight, double distance, Row& row,
+                                   Rng& rng) const {
+    if (params_.estimator != ShadowEstimator::Cached) return tracedShadow(p, toLight, distance, row, rng);
+    ++row.counts.meshShadowRays;
+    if (accel_->occluded(toFloat(p), toFloat(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
+    Vec3d T(1.0);
+    for (std::size_t o = 0; o < volumes_.size(); ++o) {
+        ++row.counts.shadowSamples;
+        T *= expNeg(volumes_[o].sigmaT * row.marchers[light * volumes_.size() + o].densityPathFromWorld(p));
+    }
+    return T;
+}
+
+}  // namespace weft

@@ -1,0 +1,81 @@
+#pragma once
+// The light transport of volume.singlescatter for one render: a camera ray
+// marches every volume it crosses (overlapping ones add their extinction)
+// and ends at the first surface, which is lit by the same lights through
+// the meshes and the volumes' transmittance and composited behind:
+//   L = L_volume + T * L_surface.
+//
+// Step rule: a camera ray steps `step` voxel lengths (cube root of a
+// voxel's volume) of the finest volume it crosses, and a shadow ray
+// `shadowstep` voxel lengths of the volume it crosses. On uniform grids a
+// voxel length is one index unit, so one uniform volume marches exactly as
+// before. A sample where several volumes have density scatters in
+// proportion to each one's scattering coefficient (with its own phase).
+#include <openvdb/tools/Interpolation.h>
+
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/base/render_context.hpp"
+#include "core/base/rng.hpp"
+#include "core/mesh/mesh_accel.hpp"
+#include "plugins/volume_singlescatter/light_cache.hpp"
+#include "plugins/volume_singlescatter/scatter_volume.hpp"
+
+namespace weft {
+
+class ScatterTracer {
+public:
+    // accel: the scene's BVH, or null when it has no meshes.
+    ScatterTracer(const Scene& scene, const ScatterParams& params, std::vector<ScatterVolume> volumes,
+                  const MeshAccel* accel, float eps);
+    void buildCaches(RenderContext& ctx);  // estimator=cached
+
+    class Row;  // per-thread state: accessors, intersector copies, counts
+    struct RowDeleter {
+        void operator()(Row* row) const;
+    };
+    std::unique_ptr<Row, RowDeleter> row() const;
+
+    struct Counts {
+        std::int64_t samples = 0, shadowSamples = 0, meshShadowRays = 0;
+    };
+    static const Counts& counts(const Row& row);
+
+    // Radiance of a camera ray; T returns the volumes' transmittance in
+    // front of it and surface whether it ended at a surface.
+    Vec3d radiance(const Ray& ray, float offset, Row& row, Rng& rng, Vec3d& T, bool& surface) const;
+
+private:
+    struct Share {  // one volume's part of a sample
+        std::size_t volume;
+        double weight;  // density x its voxel lengths per march unit
+    };
+    bool marchVolumes(const Ray& ray, double tSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const;
+    bool marchOne(const Ray& ray, double uSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const;
+    Vec3d inscatter(const Vec3d& p, const Vec3d& viewDir, const std::vector<Share>& shares, const Vec3d& sigmaT,
+                    Row& row, Rng& rng) const;
+    Vec3d shadow(std::size_t light, const Vec3d& p, const Vec3d& toLight, double distance, std::size_t receiver, Row& row,
+                 Rng& rng) const;
+    Vec3d tracedShadow(const Vec3d& p, const Vec3d& toLight, double distance, Row& row, Rng& rng) const;
+    Vec3d shadowThrough(std::size_t volume, const Vec3d& p, const Vec3d& toLight, double distance, Row& row, Rng& rng,
+                        Vec3d T) const;
+    Vec3d surfaceRadiance(const Ray& ray, const SurfaceHit& hit, Row& row, Rng& rng) const;
+    Vec3d surfaceShadow(std::size_t light, const Vec3d& p, const Vec3d& toLight, double distance, Row& row, Rng& rng) const;
+    double phase(const ScatterVolume& v, double cosTheta) const;
+    std::size_t cacheIndex(std::size_t light, std::size_t receiver, std::size_t occluder) const {
+        return (light * volumes_.size() + receiver) * volumes_.size() + occluder;
+    }
+
+    const Scene& scene_;
+    const ScatterParams& params_;
+    std::vector<ScatterVolume> volumes_;
+    const MeshAccel* accel_;
+    float eps_;
+    std::vector<openvdb::FloatGrid::Ptr> densityCaches_;     // [light][receiver][occluder]
+    std::vector<openvdb::FloatGrid::Ptr> visibilityCaches_;  // [light][receiver], with meshes only
+};
+
+}  // namespace weft
