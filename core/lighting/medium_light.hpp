@@ -29,7 +29,7 @@ public:
     Vec3d transmittance(const Vec3f& origin, const Vec3f& dir, float distance, Rng& rng) {
         ++traced;
         if (accel_.occluded(origin, dir, 0.0f, distance * (1.0f - 1e-4f))) return Vec3d(0.0);
-        ray_.reset(Vec3d(origin.x(), origin.y(), origin.z()), Vec3d(dir.x(), dir.y(), dir.z()), double(distance));
+        ray_.reset(toVec3d(origin), toVec3d(dir), double(distance));
         if (ray_.empty()) return Vec3d(1.0);
         return tracking_ == ShadowTracking::Ratio ? ratioTrackingTransmittance(ray_, rng, collisions)
                                                   : deltaTrackingTransmittance(ray_, rng, collisions);
@@ -43,8 +43,6 @@ private:
     MediumRay ray_;
     ShadowTracking tracking_;
 };
-
-inline Vec3f toVec3f(const Vec3d& v) { return Vec3f(float(v[0]), float(v[1]), float(v[2])); }
 
 // u0..u2 pick the emitter point.
 // emitters: the scene's (empty for a scene without meshes, which has none).

@@ -24,8 +24,6 @@ inline void requireSurfaceLights(const Scene& scene, const std::string& techniqu
             throw Error(technique + " lights surfaces with point, directional and emissive lights only; the scene has an environment light");
 }
 
-inline Vec3f toVec3f(const Vec3d& v) { return Vec3f(float(v.x()), float(v.y()), float(v.z())); }
-
 // The first surface along a camera ray (invalid when none).
 inline SurfaceHit firstSurface(const MeshAccel& accel, const Ray& ray) {
     return accel.intersect(toVec3f(ray.origin), toVec3f(ray.dir), 0.0f, std::numeric_limits<float>::infinity());

@@ -31,8 +31,7 @@ TriangleMesh triangulate(const PolyMesh& mesh, const std::string& source) {
 
 void transformMesh(PolyMesh& mesh, const openvdb::math::Mat4d& objectToWorld) {
     for (Vec3f& p : mesh.positions) {
-        const Vec3d w = objectToWorld.transform(Vec3d(p.x(), p.y(), p.z()));
-        p = Vec3f(float(w.x()), float(w.y()), float(w.z()));
+        p = toVec3f(objectToWorld.transform(toVec3d(p)));
     }
 }
 

@@ -13,6 +13,11 @@ using Vec3d = openvdb::math::Vec3d;
 using Vec3f = openvdb::math::Vec3s;
 using BBoxd = openvdb::math::BBox<Vec3d>;
 
+// Between the double vectors of the scene and OpenVDB and the float ones of
+// Embree and shading.
+inline Vec3f toVec3f(const Vec3d& v) { return Vec3f(float(v.x()), float(v.y()), float(v.z())); }
+inline Vec3d toVec3d(const Vec3f& v) { return Vec3d(v.x(), v.y(), v.z()); }
+
 struct Ray {
     Vec3d origin;
     Vec3d dir;  // unit length

@@ -154,8 +154,6 @@ openvdb::math::Transform::Ptr spacingTransform(const openvdb::Vec3d& s) {
     return std::make_shared<openvdb::math::Transform>(std::make_shared<openvdb::math::ScaleMap>(s));
 }
 
-void checkInputFile(const std::string& path) { requireRegularFile(path, "raw volume"); }
-
 }  // namespace
 
 // ---- options ---------------------------------------------------------------
@@ -243,7 +241,7 @@ openvdb::FloatGrid::Ptr readRawVolume(const std::string& path, const RawVolumeSp
     initVdb();
     const std::uint64_t needed = rawByteCount(spec);
     if (spec.gridName.empty()) throw Error("--grid: the grid name must not be empty");
-    checkInputFile(path);
+    requireRegularFile(path, "raw volume");
     const bool gzip = endsWith(path, ".gz");
     // A plain file's size is known up front: fail before reading anything.
     if (!gzip) {

@@ -1,5 +1,6 @@
 #include "core/volume/volume_ray.hpp"
 
+#include <algorithm>
 #include <limits>
 
 namespace weft {
@@ -28,6 +29,16 @@ std::optional<IndexRay> toIndexRay(const Ray& worldRay, const Volume& volume) {
     if (!(t1 > t0)) return std::nullopt;
     ray.t0 = t0, ray.t1 = t1;
     return ray;
+}
+
+void mergeIntervals(std::vector<RayInterval>& intervals) {
+    std::sort(intervals.begin(), intervals.end(), [](const RayInterval& a, const RayInterval& b) { return a.lo < b.lo; });
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < intervals.size(); ++i) {
+        if (out > 0 && intervals[i].lo <= intervals[out - 1].hi) intervals[out - 1].hi = std::max(intervals[out - 1].hi, intervals[i].hi);
+        else intervals[out++] = intervals[i];
+    }
+    intervals.resize(out);
 }
 
 }  // namespace weft

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "core/scene/camera.hpp"
 #include "core/volume/transfer_function.hpp"
@@ -19,6 +20,15 @@ struct IndexRay {
     double speed = 1;       // index units per unit of the world ray's parameter
     Vec3d at(double t) const { return origin + dir * t; }
 };
+
+// A stretch [lo, hi] of a ray's parameter: where a volume is occupied.
+struct RayInterval {
+    double lo = 0, hi = 0;
+};
+
+// Sorts the intervals of several volumes by start and joins those that
+// overlap or touch, so a march visits each stretch once.
+void mergeIntervals(std::vector<RayInterval>& intervals);
 
 // Clips a world ray to the volume's index box; nothing when it misses.
 std::optional<IndexRay> toIndexRay(const Ray& worldRay, const Volume& volume);

@@ -92,7 +92,6 @@ void requireLights(const Scene& scene) {
 
 bool finite(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 double maxChannel(const Vec3d& v) { return std::max({v[0], v[1], v[2]}); }
-Vec3d toVec3d(const Vec3f& v) { return Vec3d(v.x(), v.y(), v.z()); }
 
 class PathTracer final : public Technique {
 public:

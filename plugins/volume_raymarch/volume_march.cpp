@@ -79,13 +79,7 @@ void VolumeMarcher::collectIntervals(double uEnd) {
         while (hdda.march(a, b)) intervals_.push_back({a / c.perU, b / c.perU});
     }
     if (crossings_.size() == 1) return;  // one HDDA's intervals are already in order
-    std::sort(intervals_.begin(), intervals_.end(), [](const Interval& x, const Interval& y) { return x.lo < y.lo; });
-    std::vector<Interval> merged;
-    for (const Interval& in : intervals_) {
-        if (!merged.empty() && in.lo < merged.back().hi) merged.back().hi = std::max(merged.back().hi, in.hi);
-        else merged.push_back(in);
-    }
-    intervals_.swap(merged);
+    mergeIntervals(intervals_);
 }
 
 // One segment of `length` march units sampled at u: every volume holding u.
@@ -109,7 +103,7 @@ void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
 // Samples u_k = u0 + (k + offset) * step for k < kMax inside [lo, hi);
 // false once early ray termination ends the ray.
 template <class AddSegment>
-bool VolumeMarcher::marchSteps(const Interval& in, double kMax, float offset, RayAccumulator& acc, AddSegment&& add) {
+bool VolumeMarcher::marchSteps(const RayInterval& in, double kMax, float offset, RayAccumulator& acc, AddSegment&& add) {
     const double h = settings_.step, u0 = u0_, end = std::min(in.hi, uEnd_);  // locals: no reloads after each sample
     const float ert = settings_.ertOpacity;
     const double kFirst = std::max(0.0, std::ceil((in.lo - u0) / h - offset));
@@ -122,7 +116,7 @@ bool VolumeMarcher::marchSteps(const Interval& in, double kMax, float offset, Ra
     return true;
 }
 
-bool VolumeMarcher::marchInterval(const Interval& in, double kMax, float offset, RayAccumulator& acc) {
+bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offset, RayAccumulator& acc) {
     if (crossings_.size() > 1) return marchSteps(in, kMax, offset, acc, [&](double u, double h) { addSegment(u, h, acc); });
     // One volume, the common case: the march's bounds keep every sample inside it.
     const IndexRay ray = crossings_.front().ray;
@@ -150,7 +144,7 @@ RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offse
     const double kLast = cut ? std::floor((uHit - u0_) / h) : std::numeric_limits<double>::infinity();
     collectIntervals(uEnd_);
     const bool skipping = lookups_.front().hdda.has_value();
-    for (const Interval& in : intervals_) {
+    for (const RayInterval& in : intervals_) {
         if (skipping && acc.opacity() >= settings_.ertOpacity) return acc;
         if (!marchInterval(in, kLast, offset, acc)) return acc;
     }

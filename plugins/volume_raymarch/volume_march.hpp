@@ -76,21 +76,18 @@ private:
         double perU;        // its index units per march unit
         float depthScale;   // its voxel lengths per march unit
     };
-    struct Interval {
-        double lo, hi;  // march units
-    };
 
     bool cross(const Ray& ray);
     void collectIntervals(double uEnd);
-    bool marchInterval(const Interval& in, double kMax, float offset, RayAccumulator& acc);
+    bool marchInterval(const RayInterval& in, double kMax, float offset, RayAccumulator& acc);
     template <class AddSegment>
-    bool marchSteps(const Interval& in, double kMax, float offset, RayAccumulator& acc, AddSegment&& add);
+    bool marchSteps(const RayInterval& in, double kMax, float offset, RayAccumulator& acc, AddSegment&& add);
     void addSegment(double u, double length, RayAccumulator& acc);
 
     MarchSettings settings_;
     std::deque<Lookup> lookups_;
     std::vector<Crossing> crossings_;
-    std::vector<Interval> intervals_;
+    std::vector<RayInterval> intervals_;  // march units
     double u0_ = 0, uEnd_ = 0, unitLength_ = 1;  // first entry, last exit, world length of a march unit
     std::int64_t samples_ = 0;
 };

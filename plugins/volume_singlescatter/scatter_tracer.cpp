@@ -8,6 +8,7 @@
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/surface_shading.hpp"
 #include "core/volume/transmittance.hpp"
+#include "core/volume/volume_ray.hpp"
 
 namespace weft {
 
@@ -43,9 +44,6 @@ struct Crossing {  // one volume on the current camera ray
     double depthScale;  // voxel lengths per march unit
 };
 
-struct Span {
-    double t0, t1;  // march units
-};
 
 // Light towards p: unit direction, distance, and radiance scale.
 struct LightAt {
@@ -62,8 +60,6 @@ LightAt lightAt(const DirectionalOrPointLight& light, const Vec3d& p) {
     return {to / d, light.color / (d * d), d, true};
 }
 
-Vec3f toFloat(const Vec3d& v) { return Vec3f(float(v.x()), float(v.y()), float(v.z())); }
-
 }  // namespace
 
 class ScatterTracer::Row {
@@ -72,7 +68,7 @@ public:
     std::deque<GridLookup> density, visibility;
     std::deque<PathMarcher> marchers;  // [light][occluder], for surfaces
     std::vector<Crossing> crossings;
-    std::vector<Span> spans;
+    std::vector<RayInterval> spans;  // march units
     std::vector<VdbRay::TimeSpan> hits;
     std::vector<Share> shares;
     Counts counts;
@@ -151,21 +147,13 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
         row.volumes[c.volume].primary.hits(row.hits);
         for (const auto& h : row.hits) row.spans.push_back({h.t0 / c.perU, h.t1 / c.perU});
     }
-    if (row.crossings.size() > 1) {
-        std::sort(row.spans.begin(), row.spans.end(), [](const Span& a, const Span& b) { return a.t0 < b.t0; });
-        std::vector<Span> merged;
-        for (const Span& s : row.spans) {
-            if (!merged.empty() && s.t0 <= merged.back().t1) merged.back().t1 = std::max(merged.back().t1, s.t1);
-            else merged.push_back(s);
-        }
-        row.spans.swap(merged);
-    }
+    if (row.crossings.size() > 1) mergeIntervals(row.spans);
     const Crossing& first = row.crossings.front();
     const double uSurface = std::isfinite(tSurface) ? tSurface * volumes_[first.volume].indexSpeed(ray.dir) / first.perU : tSurface;
     if (row.crossings.size() == 1) return marchOne(ray, uSurface, offset, row, rng, T, L);
     const double h = params_.step;
-    for (const Span& span : row.spans) {
-        for (double t = h * (std::ceil(span.t0 / h - offset) + offset); t <= span.t1; t += h) {
+    for (const RayInterval& span : row.spans) {
+        for (double t = h * (std::ceil(span.lo / h - offset) + offset); t <= span.hi; t += h) {
             if (t >= uSurface) return true;
             const Vec3d pw = volumes_[first.volume].worldPos(first.ray, t * first.perU);
             row.shares.clear();
@@ -197,8 +185,8 @@ bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row&
     const double h = params_.step, cutoff = params_.cutoff;
     std::int64_t n = 0;
     bool more = true;
-    for (const Span& span : row.spans) {
-        for (double t = h * (std::ceil(span.t0 / h - offset) + offset); t <= span.t1 && more; t += h) {
+    for (const RayInterval& span : row.spans) {
+        for (double t = h * (std::ceil(span.lo / h - offset) + offset); t <= span.hi && more; t += h) {
             if (t >= uSurface) break;
             const Vec3d pw = v.worldPos(c.ray, t * c.perU);
             const double rho = finiteDensity(sampler.wsSample(pw));
@@ -261,7 +249,7 @@ Vec3d ScatterTracer::shadow(std::size_t light, const Vec3d& p, const Vec3d& toLi
 Vec3d ScatterTracer::tracedShadow(const Vec3d& p, const Vec3d& toLight, double distance, Row& row, Rng& rng) const {
     if (accel_) {
         ++row.counts.meshShadowRays;
-        if (accel_->occluded(toFloat(p), toFloat(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
+        if (accel_->occluded(toVec3f(p), toVec3f(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
     }
     Vec3d T(1.0);
     for (std::size_t o = 0; o < volumes_.size(); ++o) T = shadowThrough(o, p, toLight, distance, row, rng, T);
@@ -299,21 +287,21 @@ Vec3d ScatterTracer::shadowThrough(std::size_t volume, const Vec3d& p, const Vec
 // Emission plus the lights on the Lambert + glossy BRDF, through meshes and volumes.
 Vec3d ScatterTracer::surfaceRadiance(const Ray& ray, const SurfaceHit& hit, Row& row, Rng& rng) const {
     const Vec3d p = ray.origin + ray.dir * double(hit.t);
-    const Vec3f wo = -toFloat(ray.dir).unitSafe();
+    const Vec3f wo = -toVec3f(ray.dir).unitSafe();
     const Material& mat = scene_.materials[accel_->material(hit.geom, hit.prim)];
     const bool front = hit.normal.dot(wo) > 0;
     const Vec3f n = front ? hit.normal : -hit.normal;
     const Brdf brdf = Brdf::of(mat);
-    const Vec3d origin = p + Vec3d(n.x(), n.y(), n.z()) * double(eps_);
+    const Vec3d origin = p + toVec3d(n) * double(eps_);
     Vec3d L(0.0);
-    if (front && mat.emissive()) L = Vec3d(mat.emission.x(), mat.emission.y(), mat.emission.z());
+    if (front && mat.emissive()) L = toVec3d(mat.emission);
     for (std::size_t i = 0; i < params_.lights.size(); ++i) {
         const LightAt l = lightAt(params_.lights[i], origin);
-        const Vec3f wi = toFloat(l.toLight);
+        const Vec3f wi = toVec3f(l.toLight);
         const float cosI = n.dot(wi);
         if (!l.valid || cosI <= 0) continue;
         const Vec3f f = brdf.eval(wo, wi, n) * cosI;
-        L += Vec3d(f.x(), f.y(), f.z()) * l.color * surfaceShadow(i, origin, l.toLight, l.distance, row, rng);
+        L += toVec3d(f) * l.color * surfaceShadow(i, origin, l.toLight, l.distance, row, rng);
     }
     return L;
 }
@@ -324,7 +312,7 @@ Vec3d ScatterTracer::surfaceShadow(std::size_t light, const Vec3d& p, const Vec3
                                    Rng& rng) const {
     if (params_.estimator != ShadowEstimator::Cached) return tracedShadow(p, toLight, distance, row, rng);
     ++row.counts.meshShadowRays;
-    if (accel_->occluded(toFloat(p), toFloat(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
+    if (accel_->occluded(toVec3f(p), toVec3f(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
     Vec3d T(1.0);
     for (std::size_t o = 0; o < volumes_.size(); ++o) {
         ++row.counts.shadowSamples;
