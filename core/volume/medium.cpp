@@ -75,6 +75,10 @@ Medium::Medium(const std::vector<Volume>& volumes) {
         e.bricks = densityBricks(*v.grid);
         volumes_.push_back(e);
     }
+    if (volumes_.size() < 2) return;
+    std::vector<BBoxd> boxes;
+    for (const Entry& e : volumes_) boxes.push_back(e.volume->worldBox());
+    bvh_ = VolumeBvh(std::move(boxes));
 }
 
 MediumRay::MediumRay(const Medium& medium) : medium_(medium) {
@@ -109,19 +113,26 @@ void MediumRay::nextBrick(MediumSegment& s) {
 void MediumRay::reset(const Vec3d& origin, const Vec3d& dir, double tMax) {
     segments_.clear();
     end_ = 0;
-    for (std::uint32_t i = 0; i < medium_.volumes_.size(); ++i) {
-        const Medium::Entry& e = medium_.volumes_[i];
-        const auto& xf = e.volume->grid->transform();
-        const Vec3d io = xf.worldToIndex(origin), step = xf.worldToIndex(origin + dir) - io;
-        const double perWorld = step.length();  // index length per world length
-        if (!(perWorld > 0)) continue;
-        const auto clip = toIndexRay(Ray{origin, dir}, *e.volume);
-        if (!clip) continue;
-        MediumSegment s{i, clip->t0 / perWorld, std::min(clip->t1 / perWorld, tMax), 0.0, io, step, {}, {}, {}, 0.0};
-        if (!(s.t1 > s.t0)) continue;
-        startBricks(s);
-        segments_.push_back(s), end_ = std::max(end_, s.t1);
+    if (medium_.bvh_.size() == 0) {
+        for (std::uint32_t i = 0; i < medium_.volumes_.size(); ++i) addSegment(i, origin, dir, tMax);
+        return;
     }
+    medium_.bvh_.query(origin, dir, tMax, crossed_);
+    for (std::uint32_t i : crossed_) addSegment(i, origin, dir, tMax);
+}
+
+void MediumRay::addSegment(std::uint32_t i, const Vec3d& origin, const Vec3d& dir, double tMax) {
+    const Medium::Entry& e = medium_.volumes_[i];
+    const auto& xf = e.volume->grid->transform();
+    const Vec3d io = xf.worldToIndex(origin), step = xf.worldToIndex(origin + dir) - io;
+    const double perWorld = step.length();  // index length per world length
+    if (!(perWorld > 0)) return;
+    const auto clip = toIndexRay(Ray{origin, dir}, *e.volume);
+    if (!clip) return;
+    MediumSegment s{i, clip->t0 / perWorld, std::min(clip->t1 / perWorld, tMax), 0.0, io, step, {}, {}, {}, 0.0};
+    if (!(s.t1 > s.t0)) return;
+    startBricks(s);
+    segments_.push_back(s), end_ = std::max(end_, s.t1);
 }
 
 MajorantSpan MediumRay::majorantAt(double t) {

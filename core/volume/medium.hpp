@@ -21,6 +21,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "core/volume/volume_bvh.hpp"
 #include "core/base/rng.hpp"
 #include "core/volume/volume.hpp"
 
@@ -84,7 +85,10 @@ private:
     void nextBrick(MediumSegment& s);
 
     std::vector<openvdb::FloatGrid::ConstAccessor> accessors_, brickAccessors_;
+    void addSegment(std::uint32_t volume, const Vec3d& origin, const Vec3d& dir, double tMax);
+
     std::vector<MediumSegment> segments_;
+    std::vector<std::uint32_t> crossed_;  // the BVH's answer
     struct Lobe {
         double g;
         Vec3d scattering;
@@ -95,7 +99,9 @@ private:
 
 class Medium {
 public:
+    // Keeps pointers to the volumes: they must outlive it (no temporaries).
     explicit Medium(const std::vector<Volume>& volumes);
+    explicit Medium(std::vector<Volume>&&) = delete;
     bool empty() const { return volumes_.empty(); }
 
 private:
@@ -107,6 +113,7 @@ private:
         openvdb::FloatGrid::Ptr bricks;  // per brick: density bound (see above)
     };
     std::vector<Entry> volumes_;  // non-empty volumes only
+    VolumeBvh bvh_;               // of their world boxes, with two or more
 };
 
 // Henyey-Greenstein phase function of the cosine between the travel

@@ -65,7 +65,8 @@ TEST(Medium, HomogeneousBoxTransmittanceIsExponential) {
     // density 1 (away from the trilinear ramp at the faces).
     const Vec3d absorb(0.01, 0.02, 0.05), scatter(0.02, 0.04, 0.05);
     const Volume v = homogeneousCube(16, absorb, scatter);
-    const Medium medium({v});
+    const std::vector<Volume> held{v};  // Medium keeps pointers into it
+    const Medium medium(held);
     const double d = 0.6;
     for (Estimator estimate : {&ratioTrackingTransmittance, &deltaTrackingTransmittance}) {
         MediumRay ray(medium);
@@ -85,7 +86,8 @@ TEST(Medium, HomogeneousBoxTransmittanceIsExponential) {
 
 TEST(Medium, SegmentsConvertIndexDistanceToWorldDistance) {
     const Volume v = homogeneousCube(16, Vec3d(0.1), Vec3d(0.1));
-    const Medium medium({v});
+    const std::vector<Volume> held{v};  // Medium keeps pointers into it
+    const Medium medium(held);
     MediumRay ray(medium);
     ray.reset(Vec3d(-1, 0.5, 0.5), Vec3d(1, 0, 0), 10.0);
     ASSERT_EQ(ray.segments().size(), 1u);
@@ -97,7 +99,8 @@ TEST(Medium, SegmentsConvertIndexDistanceToWorldDistance) {
 
 TEST(Medium, OverlappingVolumesAddTheirExtinction) {
     const Volume a = homogeneousCube(16, Vec3d(0.1), Vec3d(0.0)), b = homogeneousCube(8, Vec3d(0.0), Vec3d(0.3));
-    const Medium medium({a, b});
+    const std::vector<Volume> held{a, b};  // Medium keeps pointers into it
+    const Medium medium(held);
     MediumRay ray(medium);
     ray.reset(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), 10.0);
     ASSERT_EQ(ray.segments().size(), 2u);
@@ -112,7 +115,8 @@ TEST(Medium, NonAbsorbingMediumReturnsEveryWalker) {
     // ends only by leaving, so the expected escaped weight is 1 per channel.
     const Volume v = cubeVolume(16, Vec3d(0.0), Vec3d(0.3, 0.6, 1.2),
                                 [](int i, int j, int k) { return float(0.2 + 0.8 * ((i * 7 + j * 3 + k * 5) % 11) / 10.0); });
-    const Medium medium({v});
+    const std::vector<Volume> held{v};  // Medium keeps pointers into it
+    const Medium medium(held);
     MediumRay ray(medium);
     Rng rng(3);
     std::int64_t collisions = 0;
@@ -182,7 +186,8 @@ TEST(Medium, DeltaAndRatioTrackingAgreeThroughAHeterogeneousGrid) {
     const Volume v = cubeVolume(24, Vec3d(0.02, 0.05, 0.1), Vec3d(0.1, 0.1, 0.05), [](int i, int j, int k) {
         return float(0.5 + 0.5 * std::sin(0.7 * i) * std::cos(0.4 * j + 0.3 * k));
     });
-    const Medium medium({v});
+    const std::vector<Volume> held{v};  // Medium keeps pointers into it
+    const Medium medium(held);
     Moments m[2];
     int e = 0;
     for (Estimator estimate : {&ratioTrackingTransmittance, &deltaTrackingTransmittance}) {
@@ -207,7 +212,8 @@ TEST(Medium, DeltaAndRatioTrackingAgreeThroughAHeterogeneousGrid) {
 TEST(Medium, ExtremeCoefficientsStayFinite) {
     for (double k : {1e-30, 1e12}) {
         const Volume v = homogeneousCube(8, Vec3d(k), Vec3d(k));
-        const Medium medium({v});
+        const std::vector<Volume> held{v};  // Medium keeps pointers into it
+        const Medium medium(held);
         MediumRay ray(medium);
         Rng rng(1);
         std::int64_t collisions = 0;
@@ -235,7 +241,8 @@ TEST(Medium, NonFiniteVoxelsReadAsEmpty) {
     const Volume v = cubeVolume(8, Vec3d(0.1), Vec3d(0.1), [](int i, int, int) {
         return i < 4 ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
     });
-    const Medium medium({v});
+    const std::vector<Volume> held{v};  // Medium keeps pointers into it
+    const Medium medium(held);
     MediumRay ray(medium);
     ray.reset(Vec3d(-1, 0.5, 0.5), Vec3d(1, 0, 0), 1e30);
     Rng rng(2);
@@ -254,7 +261,8 @@ TEST(Medium, BrickMajorantsBoundTheExtinctionAndSkipEmptySpace) {
     m.preScale(Vec3d(1.0, 2.0, 0.5));
     m.postRotate(openvdb::math::Y_AXIS, 0.6);
     v.grid = placeGrid(v.grid, m);
-    const Medium medium({v});
+    const std::vector<Volume> held{v};  // Medium keeps pointers into it
+    const Medium medium(held);
     MediumRay ray(medium);
     Rng rng(13);
     int emptySteps = 0;
@@ -280,7 +288,8 @@ TEST(Medium, OverlappingPhaseFunctionsMixByScattering) {
     // sum_i sigma_s,i g_i / sum_i sigma_s,i.
     Volume a = homogeneousCube(16, Vec3d(0.0), Vec3d(0.3, 0.1, 0.2)), b = homogeneousCube(16, Vec3d(0.0), Vec3d(0.1, 0.3, 0.2));
     a.medium.g = 0.8, b.medium.g = -0.5;
-    const Medium medium({a, b});
+    const std::vector<Volume> held{a, b};  // Medium keeps pointers into it
+    const Medium medium(held);
     MediumRay ray(medium);
     ray.reset(Vec3d(0.5, 0.5, -1), Vec3d(0, 0, 1), 10.0);
     const MediumCoefficients c = ray.at(1.5);

@@ -101,6 +101,8 @@ public:
         if (accel) scene.emitters();
         const float eps = accel ? rayEpsilon(scene) : 0.0f;
         const ImagePlane plane(plane_, s);
+        const VolumeBvh bounds = scene.volumes.size() > 1 ? VolumeBvh::of(scene.volumes) : VolumeBvh();
+        const MarchSettings march{params_.step, params_.ertOpacity, scene.volumes.size() > 1 ? &bounds : nullptr};
         // One per row: its own grid accessors and HDDAs, and its counts.
         struct Shader {
             const Raymarch& self;
@@ -113,9 +115,8 @@ public:
             RaymarchCounts counts;
 
             Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o,
-                   const MeshAccel* a, float e)
-                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e),
-                  marcher(sc, {r.params_.step, r.params_.ertOpacity}, r.skipper_ ? &*r.skipper_ : nullptr) {}
+                   const MeshAccel* a, float e, const MarchSettings& m)
+                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_ ? &*r.skipper_ : nullptr) {}
             Rgba operator()(const CameraSample& c) {
                 const Ray ray = scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
                 float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.5f;
@@ -139,7 +140,7 @@ public:
                 counters.add("rays.shadow", counts.shadow);
             }
         };
-        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps); });
+        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps, march); });
     }
 
 private:

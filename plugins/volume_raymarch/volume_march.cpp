@@ -45,7 +45,10 @@ VolumeMarcher::VolumeMarcher(const Scene& scene, const MarchSettings& settings, 
 bool VolumeMarcher::cross(const Ray& ray) {
     crossings_.clear();
     unitLength_ = std::numeric_limits<double>::max();
-    for (Lookup& l : lookups_) {
+    if (settings_.bounds) settings_.bounds->query(ray.origin, ray.dir, std::numeric_limits<double>::infinity(), crossed_);
+    const std::size_t n = settings_.bounds ? crossed_.size() : lookups_.size();
+    for (std::size_t k = 0; k < n; ++k) {
+        Lookup& l = lookups_[settings_.bounds ? crossed_[k] : k];
         const auto r = toIndexRay(ray, l.volume);
         if (!r) continue;
         crossings_.push_back({&l, *r, 0, 0});

@@ -24,6 +24,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/volume/volume_bvh.hpp"
 #include "core/scene/scene.hpp"
 #include "core/volume/volume_ray.hpp"
 
@@ -35,6 +36,7 @@ using VolumeIntersector = openvdb::tools::VolumeRayIntersector<openvdb::FloatGri
 struct MarchSettings {
     double step = 0.5;  // in voxel lengths of the finest volume crossed
     float ertOpacity = 0.99f;
+    const VolumeBvh* bounds = nullptr;  // of the scene's volumes (null: test each one)
 };
 
 // skip_empty's HDDA masters, one per volume, built once per render on the
@@ -87,6 +89,7 @@ private:
     MarchSettings settings_;
     std::deque<Lookup> lookups_;
     std::vector<Crossing> crossings_;
+    std::vector<std::uint32_t> crossed_;  // the bounds' answer
     std::vector<RayInterval> intervals_;  // march units
     double u0_ = 0, uEnd_ = 0, unitLength_ = 1;  // first entry, last exit, world length of a march unit
     std::int64_t samples_ = 0;

@@ -83,7 +83,7 @@ float PathMarcher::densityPath(const Vec3d& x) {
     for (double t = 0.5 * step; t < tMax; t += step) {
         if (t < tEnter) continue;
         const double rho = sampler_.isSample(x + dir * t);
-        if (std::isfinite(rho) && rho >= s_.cutoff) D += rho * s_.step / (1.0 + s_.gain * (t * k));
+        if (std::isfinite(rho) && rho > 0 && rho >= s_.cutoff) D += rho * s_.step / (1.0 + s_.gain * (t * k));
         if (D > stopDepth_) break;
     }
     return float(D);

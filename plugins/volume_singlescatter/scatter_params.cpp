@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/base/error.hpp"
+#include "core/lighting/emitters.hpp"
 
 namespace weft {
 
@@ -118,6 +119,7 @@ std::vector<ParamSpec> scatterParamSpecs() {
         boolParam("jitter", true, "per-pixel random offset of primary samples (no rings; raymarch keeps vdb_render's phase)"),
         enumParam("phase", "isotropic", {"isotropic", "hg"}, "phase function (isotropic is vdb_render's; hg: Henyey-Greenstein)"),
         floatParam("g", 0, -0.99, 0.99, "Henyey-Greenstein anisotropy"),
+        boolParam("physical", false, "mesh.pathtrace's conventions: phase functions normalised over the sphere (isotropic 1/4pi), gain 0; false: vdb_render's isotropic phase of 1"),
         stringParam("translate", "0,0,0", "vdb_render camera translation (compat only)", listCheck(3, 3)),
         stringParam("rotate", "0,0,0", "vdb_render camera rotation X,Y,Z degrees (compat only)", listCheck(3, 3)),
         stringParam("lookat", "0,0,0", "vdb_render look-at target (compat only; default: active box centre)", listCheck(3, 3)),
@@ -141,7 +143,12 @@ ScatterParams readScatterParams(const ParamSet& p, const Scene& scene, double as
     s.scatter = vec3(p, "scatter");
     for (int c = 0; c < 3; ++c)
         if (s.absorb[c] < 0 || s.scatter[c] < 0) throw Error("volume.singlescatter: absorb and scatter must not be negative");
-    s.gain = p.getFloat("gain");
+    s.physical = p.getBool("physical");
+    if (s.physical && s.vdbRenderCompat) throw Error("volume.singlescatter: physical=true and compat=vdb_render exclude each other (vdb_render's phase is not normalised)");
+    if (s.physical && p.wasSet("gain") && p.getFloat("gain") != 0)
+        throw Error("volume.singlescatter: gain is vdb_render's non-physical shadow scatter; physical=true needs gain=0");
+    s.phaseScale = s.physical ? 1.0 / (4.0 * M_PI) : 1.0;
+    s.gain = s.physical ? 0.0 : p.getFloat("gain");
     s.cutoff = p.getFloat("cutoff");
     s.step = p.getFloat("step");
     s.shadowStep = p.getFloat("shadowstep");
@@ -151,7 +158,10 @@ ScatterParams readScatterParams(const ParamSet& p, const Scene& scene, double as
     s.jitter = p.getBool("jitter") && s.estimator != ShadowEstimator::Raymarch;
     s.phase = p.getString("phase") == "hg" ? Phase::HenyeyGreenstein : Phase::Isotropic;
     s.g = p.getFloat("g");
-    if (s.vdbRenderCompat || p.wasSet("light") || scene.lights.empty()) s.lights = {paramLight(p)};
+    // Emissive triangles are the scene's lights too; the `light` default
+    // stands in only where the scene has no light at all.
+    s.emitters = !s.vdbRenderCompat && !scene.meshes.empty() && !scene.emitters().empty();
+    if (s.vdbRenderCompat || p.wasSet("light") || (scene.lights.empty() && !s.emitters)) s.lights = {paramLight(p)};
     else s.lights = sceneLights(scene);
     if (s.vdbRenderCompat) s.camera = vdbRenderCamera(p, scene, aspect);
     return s;

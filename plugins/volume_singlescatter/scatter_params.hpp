@@ -35,6 +35,11 @@ struct ScatterParams {
     Phase phase = Phase::Isotropic;
     double g = 0;
     bool vdbRenderCompat = false;
+    // The path tracer's conventions: phase functions integrate to 1 over the
+    // sphere (isotropic 1/4pi) and gain is 0. Off: vdb_render's phase of 1.
+    bool physical = false;
+    double phaseScale = 1.0;  // 1 / (4 pi) when physical
+    bool emitters = false;    // emissive triangles light the scene too (not in compat mode)
     std::vector<DirectionalOrPointLight> lights;
     std::optional<Camera> camera;  // set in vdb_render compatibility mode
 };

@@ -6,7 +6,9 @@
 
 #include "core/base/counters.hpp"
 #include "core/lighting/brdf.hpp"
+#include "core/lighting/emitters.hpp"
 #include "core/lighting/surface_shading.hpp"
+#include "core/volume/medium.hpp"
 #include "core/volume/transmittance.hpp"
 #include "core/volume/volume_ray.hpp"
 
@@ -20,11 +22,6 @@ using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, o
 double finiteDensity(double rho) { return std::isfinite(rho) ? rho : 0.0; }
 
 Vec3d expNeg(const Vec3d& v) { return Vec3d(std::exp(-v[0]), std::exp(-v[1]), std::exp(-v[2])); }
-
-double henyeyGreenstein(double g, double cosTheta) {  // normalised so that isotropic is 1
-    const double d = 1.0 + g * g - 2.0 * g * cosTheta;
-    return (1.0 - g * g) / (d * std::sqrt(d));
-}
 
 struct GridLookup {  // built in place: the sampler points at the accessor
     openvdb::FloatGrid::ConstAccessor acc;
@@ -60,6 +57,21 @@ LightAt lightAt(const DirectionalOrPointLight& light, const Vec3d& p) {
     return {to / d, light.color / (d * d), d, true};
 }
 
+// What OpenVDB's intersector can report: whole leaf nodes (8^3 voxels), a
+// voxel beyond for safety, so the BVH prunes exactly the rays it would miss.
+BBoxd intersectorWorldBox(const Volume& v) {
+    openvdb::CoordBBox leaves;
+    v.grid->tree().evalLeafBoundingBox(leaves);
+    leaves.expand(1);
+    BBoxd box;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3d p((corner & 1) ? leaves.max().x() + 1 : leaves.min().x(), (corner & 2) ? leaves.max().y() + 1 : leaves.min().y(),
+                      (corner & 4) ? leaves.max().z() + 1 : leaves.min().z());
+        box.expand(v.grid->indexToWorld(p));
+    }
+    return box;
+}
+
 }  // namespace
 
 class ScatterTracer::Row {
@@ -71,12 +83,29 @@ public:
     std::vector<RayInterval> spans;  // march units
     std::vector<VdbRay::TimeSpan> hits;
     std::vector<Share> shares;
+    std::vector<std::uint32_t> crossed;  // volumes whose boxes the current ray meets
     Counts counts;
 };
 
 ScatterTracer::ScatterTracer(const Scene& scene, const ScatterParams& params, std::vector<ScatterVolume> volumes,
                              const MeshAccel* accel, float eps)
-    : scene_(scene), params_(params), volumes_(std::move(volumes)), accel_(accel), eps_(eps) {}
+    : scene_(scene), params_(params), volumes_(std::move(volumes)), accel_(accel), eps_(eps) {
+    if (volumes_.size() < 2) return;
+    std::vector<BBoxd> boxes;
+    for (const ScatterVolume& v : volumes_) boxes.push_back(intersectorWorldBox(*v.volume));
+    bvh_ = VolumeBvh(std::move(boxes));
+}
+
+// The volumes whose world boxes origin + t dir meets on [0, tMax], ascending.
+const std::vector<std::uint32_t>& ScatterTracer::crossed(const Vec3d& origin, const Vec3d& dir, double tMax, Row& row) const {
+    if (bvh_.size() > 0) {
+        bvh_.query(origin, dir, tMax, row.crossed);
+    } else {
+        row.crossed.resize(volumes_.size());
+        for (std::uint32_t i = 0; i < row.crossed.size(); ++i) row.crossed[i] = i;
+    }
+    return row.crossed;
+}
 
 static LightCacheSettings cacheSettings(const ScatterParams& p, const ScatterVolume& occluder) {
     const double sigmaMin = std::min({occluder.sigmaT[0], occluder.sigmaT[1], occluder.sigmaT[2]});
@@ -130,7 +159,7 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
     const VdbRay wray(ray.origin, ray.dir);
     row.crossings.clear();
     double unitLength = std::numeric_limits<double>::max();
-    for (std::size_t i = 0; i < volumes_.size(); ++i) {
+    for (std::uint32_t i : crossed(ray.origin, ray.dir, std::numeric_limits<double>::infinity(), row)) {
         const VdbRay iray = volumes_[i].indexRay(wray);
         if (!row.volumes[i].primary.setIndexRay(iray)) continue;
         row.crossings.push_back({i, iray, 0, 0});
@@ -161,7 +190,7 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
             for (const Crossing& c : row.crossings) {
                 const double rho = finiteDensity(row.volumes[c.volume].sampler.wsSample(pw));
                 ++row.counts.samples;
-                if (rho < params_.cutoff) continue;
+                if (!(rho > 0) || rho < params_.cutoff) continue;  // no share: it would pick a receiver with no cache here
                 row.shares.push_back({c.volume, rho * c.depthScale});
                 sigma += volumes_[c.volume].sigmaT * row.shares.back().weight;
             }
@@ -191,7 +220,7 @@ bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row&
             const Vec3d pw = v.worldPos(c.ray, t * c.perU);
             const double rho = finiteDensity(sampler.wsSample(pw));
             ++n;
-            if (rho < cutoff) continue;
+            if (!(rho > 0) || rho < cutoff) continue;
             row.shares[0].weight = rho * c.depthScale;
             const Vec3d dT = expNeg(v.sigmaT * (row.shares[0].weight * h));
             L += inscatter(pw, ray.dir, row.shares, v.sigmaT, row, rng) * T * (Vec3d(1.0) - dT);
@@ -205,7 +234,10 @@ bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row&
 }
 
 double ScatterTracer::phase(const ScatterVolume& v, double cosTheta) const {
-    return v.phase == Phase::Isotropic ? 1.0 : henyeyGreenstein(v.g, cosTheta);
+    // phaseScale is 1 / 4pi when physical: the medium's HG as it stands; else
+    // vdb_render's convention, isotropic = 1.
+    if (v.phase == Phase::Isotropic) return params_.phaseScale;
+    return params_.phaseScale * (4.0 * M_PI) * henyeyGreenstein(v.g, cosTheta);
 }
 
 // Light arriving at world point p, times albedo and phase, summed over
@@ -216,20 +248,42 @@ Vec3d ScatterTracer::inscatter(const Vec3d& p, const Vec3d& viewDir, const std::
     for (std::size_t i = 0; i < params_.lights.size(); ++i) {
         const LightAt l = lightAt(params_.lights[i], p);
         if (!l.valid) continue;
-        const double cosTheta = l.toLight.dot(viewDir);
         const Vec3d shadowT = shadow(i, p, l.toLight, l.distance, shares.front().volume, row, rng);
-        if (shares.size() == 1) {
-            const ScatterVolume& v = volumes_[shares.front().volume];
-            sum += l.color * v.albedo * shadowT * phase(v, cosTheta);
-            continue;
-        }
-        Vec3d mix(0.0);
-        for (const Share& s : shares)
-            mix += volumes_[s.volume].sigmaT * volumes_[s.volume].albedo * (s.weight * phase(volumes_[s.volume], cosTheta));
-        for (int c = 0; c < 3; ++c) mix[c] = sigmaT[c] > 0 ? mix[c] / sigmaT[c] : 0.0;
-        sum += l.color * mix * shadowT;
+        sum += l.color * shadowT * scattering(shares, sigmaT, l.toLight.dot(viewDir));
+    }
+    if (params_.emitters) {
+        const EmitterLight e = emitterLight(p, row, rng);
+        if (e.valid) sum += e.radiance * scattering(shares, sigmaT, e.toLight.dot(viewDir));
     }
     return sum;
+}
+
+// Albedo times phase of the sample's volumes, as one medium.
+Vec3d ScatterTracer::scattering(const std::vector<Share>& shares, const Vec3d& sigmaT, double cosTheta) const {
+    if (shares.size() == 1) {
+        const ScatterVolume& v = volumes_[shares.front().volume];
+        return v.albedo * phase(v, cosTheta);
+    }
+    Vec3d mix(0.0);
+    for (const Share& s : shares)
+        mix += volumes_[s.volume].sigmaT * volumes_[s.volume].albedo * (s.weight * phase(volumes_[s.volume], cosTheta));
+    for (int c = 0; c < 3; ++c) mix[c] = sigmaT[c] > 0 ? mix[c] / sigmaT[c] : 0.0;
+    return mix;
+}
+
+// One point on the emissive triangles, picked by power, seen from p
+// through the meshes and volumes (traced: the cache holds delta lights only).
+ScatterTracer::EmitterLight ScatterTracer::emitterLight(const Vec3d& p, Row& row, Rng& rng) const {
+    const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const EmitterSample e = scene_.emitters().sample(u0, u1, u2);
+    Vec3d to = toVec3d(e.position) - p;
+    const double d2 = to.lengthSqr(), d = std::sqrt(d2);
+    if (!(d > 2.0 * double(eps_)) || !(e.pdfArea > 0)) return {};
+    to /= d;
+    const double cosL = -double(e.normal.dot(toVec3f(to)));
+    if (cosL <= 0) return {};
+    const Vec3d T = tracedShadow(p, to, d, row, rng);
+    return {to, toVec3d(e.radiance) * T * (cosL / (d2 * double(e.pdfArea))), true};
 }
 
 // Transmittance from p (inside `receiver`) to the light: the cache, or shadow rays.
@@ -252,7 +306,7 @@ Vec3d ScatterTracer::tracedShadow(const Vec3d& p, const Vec3d& toLight, double d
         if (accel_->occluded(toVec3f(p), toVec3f(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
     }
     Vec3d T(1.0);
-    for (std::size_t o = 0; o < volumes_.size(); ++o) T = shadowThrough(o, p, toLight, distance, row, rng, T);
+    for (std::uint32_t o : crossed(p, toLight, distance, row)) T = shadowThrough(o, p, toLight, distance, row, rng, T);
     return T;
 }
 
@@ -270,7 +324,7 @@ Vec3d ScatterTracer::shadowThrough(std::size_t volume, const Vec3d& p, const Vec
     auto sigma = [&](double t) {
         const double rho = finiteDensity(look.sampler.wsSample(v.worldPos(iray, t)));
         ++row.counts.shadowSamples;
-        return rho < params_.cutoff ? Vec3d(0.0) : v.sigmaT * (rho * k / (1.0 + (t * k) * params_.gain));
+        return !(rho > 0) || rho < params_.cutoff ? Vec3d(0.0) : v.sigmaT * (rho * k / (1.0 + (t * k) * params_.gain));
     };
     for (const auto& span : row.hits) {
         if (params_.estimator == ShadowEstimator::Raymarch) {
@@ -302,6 +356,11 @@ Vec3d ScatterTracer::surfaceRadiance(const Ray& ray, const SurfaceHit& hit, Row&
         if (!l.valid || cosI <= 0) continue;
         const Vec3f f = brdf.eval(wo, wi, n) * cosI;
         L += toVec3d(f) * l.color * surfaceShadow(i, origin, l.toLight, l.distance, row, rng);
+    }
+    if (params_.emitters) {
+        const EmitterLight e = emitterLight(origin, row, rng);
+        const Vec3f wi = toVec3f(e.toLight);
+        if (e.valid && n.dot(wi) > 0) L += toVec3d(brdf.eval(wo, wi, n) * n.dot(wi)) * e.radiance;
     }
     return L;
 }

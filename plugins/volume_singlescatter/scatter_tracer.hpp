@@ -21,6 +21,7 @@
 #include "core/base/render_context.hpp"
 #include "core/base/rng.hpp"
 #include "core/mesh/mesh_accel.hpp"
+#include "core/volume/volume_bvh.hpp"
 #include "plugins/volume_singlescatter/light_cache.hpp"
 #include "plugins/volume_singlescatter/scatter_volume.hpp"
 
@@ -53,6 +54,13 @@ private:
         std::size_t volume;
         double weight;  // density x its voxel lengths per march unit
     };
+    struct EmitterLight {  // one emitter sample: direction, radiance x transmittance / pdf
+        Vec3d toLight{0.0}, radiance{0.0};
+        bool valid = false;
+    };
+    const std::vector<std::uint32_t>& crossed(const Vec3d& origin, const Vec3d& dir, double tMax, Row& row) const;
+    EmitterLight emitterLight(const Vec3d& p, Row& row, Rng& rng) const;
+    Vec3d scattering(const std::vector<Share>& shares, const Vec3d& sigmaT, double cosTheta) const;
     bool marchVolumes(const Ray& ray, double tSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const;
     bool marchOne(const Ray& ray, double uSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const;
     Vec3d inscatter(const Vec3d& p, const Vec3d& viewDir, const std::vector<Share>& shares, const Vec3d& sigmaT,
@@ -75,7 +83,8 @@ private:
     const MeshAccel* accel_;
     float eps_;
     std::vector<openvdb::FloatGrid::Ptr> densityCaches_;     // [light][receiver][occluder]
-    std::vector<openvdb::FloatGrid::Ptr> visibilityCaches_;  // [light][receiver], with meshes only
+    std::vector<openvdb::FloatGrid::Ptr> visibilityCaches_;
+    VolumeBvh bvh_;  // with two or more volumes  // [light][receiver], with meshes only
 };
 
 }  // namespace weft
