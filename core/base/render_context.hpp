@@ -19,7 +19,7 @@ struct RenderSettings {
     std::uint64_t seed = 0;
     bool showProgress = false;
     // Rows a tiled render needs, [rowBegin, rowEnd); rowEnd < 0 means all.
-    // Techniques that loop with forEachRow skip the others.
+    // The image plane (core/sampling/image_plane.hpp) skips the others.
     int rowBegin = 0;
     int rowEnd = -1;
 };

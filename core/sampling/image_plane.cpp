@@ -23,6 +23,11 @@ std::vector<ParamSpec> imagePlaneParamSpecs() {
     };
 }
 
+std::vector<ParamSpec> withImagePlaneParams(std::vector<ParamSpec> specs) {
+    for (ParamSpec& spec : imagePlaneParamSpecs()) specs.push_back(std::move(spec));
+    return specs;
+}
+
 ImagePlaneOptions readImagePlaneOptions(const ParamSet& p) {
     ImagePlaneOptions o;
     o.pattern = p.getString("pattern");

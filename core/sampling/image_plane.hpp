@@ -4,8 +4,10 @@
 // decides where samples go and how they become pixels:
 //   pattern    a PatternSet spec (pattern_set.hpp): supersampling with the
 //              same pattern in every pixel or an interleaved set. Empty keeps
-//              the plain default: the pixel centre at 1 spp, else independent
-//              uniform positions per pixel and sample.
+//              the plain default (PlainSamples): the pixel centre at 1 spp,
+//              else independent uniform positions per pixel and sample; or,
+//              as a technique chooses, the stratified PixelSampler positions
+//              of the mesh techniques, or pixel centres at any spp.
 //   filter     box (the pixel's own samples) or a wider reconstruction filter:
 //              every sample within the filter radius of a pixel centre counts,
 //              across pixel boundaries, as a weighted average (Wolberg 6.3.6).
@@ -33,18 +35,24 @@
 #include "core/base/counters.hpp"
 #include "core/image/image.hpp"
 #include "core/base/params.hpp"
-#include "core/sampling/pixel_loop.hpp"
 #include "core/base/render_context.hpp"
 #include "core/sampling/filters.hpp"
 #include "core/sampling/pattern_set.hpp"
+#include "core/sampling/pixel_sampler.hpp"
 
 namespace weft {
 
-struct Rgba {
-    float r = 0, g = 0, b = 0, a = 0;
-    Rgba& operator+=(const Rgba& o) { r += o.r, g += o.g, b += o.b, a += o.a; return *this; }
-    Rgba operator*(float s) const { return {r * s, g * s, b * s, a * s}; }
+// A shader returns Rgba or RgbaD; a pixel's samples are summed in that
+// type (a technique that summed in double keeps doing so).
+template <class T>
+struct RgbaT {
+    T r = 0, g = 0, b = 0, a = 0;
+    RgbaT& operator+=(const RgbaT& o) { r += o.r, g += o.g, b += o.b, a += o.a; return *this; }
+    RgbaT operator*(T s) const { return {r * s, g * s, b * s, a * s}; }
+    RgbaT<float> toFloat() const { return {float(r), float(g), float(b), float(a)}; }
 };
+using Rgba = RgbaT<float>;
+using RgbaD = RgbaT<double>;
 
 // Where a camera ray goes: continuous image position, a time in [0, 1), the
 // pixel it belongs to and its index there (for the technique's own random numbers).
@@ -57,8 +65,16 @@ struct CameraSample {
 
 enum class AdaptiveMode { Off, Supersample, Stochastic };
 
+// Where samples go when no pattern is set (not a parameter: the technique's
+// own default). Uniform: the pixel centre at 1 spp, else pixelRandom
+// positions and times. Stratified: PixelSampler(seed, pixel, k, spp)
+// dimensions 0 and 1 and kShutterDim, the mesh techniques' Latin hypercube.
+// Centres: the pixel centre at any spp, with Stratified's times.
+enum class PlainSamples { Uniform, Stratified, Centres };
+
 struct ImagePlaneOptions {
     std::string pattern;
+    PlainSamples plain = PlainSamples::Uniform;
     FilterKind filter = FilterKind::Box;
     double filterRadius = 0;
     AdaptiveMode adaptive = AdaptiveMode::Off;
@@ -69,6 +85,8 @@ struct ImagePlaneOptions {
 
 // pattern, filter, filter_radius, adaptive, adaptive_threshold, adaptive_depth, adaptive_spp.
 std::vector<ParamSpec> imagePlaneParamSpecs();
+// A technique's own parameters followed by the image plane's.
+std::vector<ParamSpec> withImagePlaneParams(std::vector<ParamSpec> specs);
 // Reads and cross-checks them (adaptive modes reconstruct with the box filter).
 ImagePlaneOptions readImagePlaneOptions(const ParamSet& p);
 
@@ -87,12 +105,14 @@ public:
     CameraSample sample(int px, int py, int k, const PixelPatterns& patterns) const;
     CameraSample sample(int px, int py, int k) const { return sample(px, py, k, patternsOf(px, py)); }
 
-    // Renders the image. makeShader() is called once per row; the shader is
-    // callable as Rgba(const CameraSample&) and has flush(Counters&).
+    // Renders the image. makeShader() is called once per row, on the thread
+    // that renders it; the shader is callable as Rgba or RgbaD
+    // (const CameraSample&) and has flush(Counters&).
     template <class MakeShader>
     Image render(RenderContext& ctx, const char* label, MakeShader makeShader) const;
 
 private:
+    template <class RowFn> void forEachRow(const char* label, RowFn rowFn) const;
     bool refineStochastic(const std::vector<Rgba>& values) const;
 
     template <class Shader> void boxRow(Shader& shade, int y, Image& image) const;

@@ -2,11 +2,36 @@
 // Template bodies of ImagePlane (included by image_plane.hpp only).
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
+#include "core/base/progress.hpp"
 #include "core/base/rng.hpp"
 
 namespace weft {
+
+// The one pixel loop of weft: every row of the settings' row band (all
+// rows unless a tile is being rendered) in parallel, progress per row.
+// Each pixel's result depends only on its own coordinates, so images are
+// identical for any thread count.
+template <class RowFn>
+void ImagePlane::forEachRow(const char* label, RowFn rowFn) const {
+    const RenderSettings& s = settings_;
+    const int end = s.rowEnd < 0 ? s.height : std::min(s.rowEnd, s.height);
+    const int begin = std::clamp(s.rowBegin, 0, end);
+    Progress progress(label, end - begin, s.showProgress);
+    tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y != rows.end(); ++y) {
+            rowFn(y);
+            progress.advance();
+        }
+    });
+    progress.finish();
+}
+
+// The sample type a shader returns (Rgba or RgbaD).
+template <class Shader>
+using ShaderValue = std::decay_t<std::invoke_result_t<Shader&, const CameraSample&>>;
 
 inline CameraSample ImagePlane::sample(int px, int py, int k, const PixelPatterns& patterns) const {
     CameraSample s;
@@ -15,6 +40,11 @@ inline CameraSample ImagePlane::sample(int px, int py, int k, const PixelPattern
     if (const PatternPoint* set = first ? patterns.first : patterns.extra) {
         const PatternPoint& p = set[first ? k : k - settings_.spp];
         s.x = px + double(p.x), s.y = py + double(p.y), s.time = p.t;
+    } else if (opt_.plain != PlainSamples::Uniform) {
+        const PixelSampler sampler(settings_.seed, px, py, std::uint32_t(k), std::uint32_t(settings_.spp));
+        const bool centre = opt_.plain == PlainSamples::Centres;
+        s.x = px + (centre ? 0.5 : double(sampler.get(0))), s.y = py + (centre ? 0.5 : double(sampler.get(1)));
+        s.time = sampler.get(kShutterDim);
     } else if (settings_.spp == 1 && k == 0) {
         s.x = px + 0.5, s.y = py + 0.5, s.time = 0.5f;
     } else {
@@ -27,23 +57,24 @@ inline CameraSample ImagePlane::sample(int px, int py, int k, const PixelPattern
 
 template <class Shader>
 Rgba ImagePlane::boxPixel(Shader& shade, int px, int py, int& used) const {
+    using V = ShaderValue<Shader>;
     const int spp = settings_.spp;
-    Rgba sum;
+    V sum;
     std::vector<Rgba> values;
     const bool stochastic = opt_.adaptive == AdaptiveMode::Stochastic;
     const PixelPatterns patterns = patternsOf(px, py);
     for (int k = 0; k < spp; ++k) {
-        const Rgba v = shade(sample(px, py, k, patterns));
+        const V v = shade(sample(px, py, k, patterns));
         sum += v;
-        if (stochastic) values.push_back(v);
+        if (stochastic) values.push_back(v.toFloat());
     }
     used = spp;
     if (stochastic && refineStochastic(values)) {
         for (int k = spp; k < spp + opt_.extraSpp; ++k) sum += shade(sample(px, py, k, patterns));
         used += opt_.extraSpp;
     }
-    const float n = float(used);
-    return {sum.r / n, sum.g / n, sum.b / n, sum.a / n};
+    const auto n = decltype(V::r)(used);
+    return V{sum.r / n, sum.g / n, sum.b / n, sum.a / n}.toFloat();
 }
 
 // Wolberg 6.2.2: a square is the mean of its corners unless one corner
@@ -67,7 +98,7 @@ Rgba ImagePlane::adaptivePixel(Shader& shade, const std::vector<Rgba>& corners, 
         CameraSample s;
         s.x = px + double(i) / L, s.y = py + double(j) / L, s.px = px, s.py = py, s.index = std::uint32_t(used++);
         known[key] = 1;
-        return cache[key] = shade(s);
+        return cache[key] = shade(s).toFloat();
     };
     auto differs = [&](const Rgba& c, const Rgba& m) {
         const float t = float(opt_.threshold);
@@ -97,7 +128,7 @@ std::vector<Rgba> ImagePlane::cornerGrid(RenderContext& ctx, MakeShader& make) c
         for (int x = 0; x < W1; ++x) {
             CameraSample s;
             s.x = x, s.y = y, s.px = x, s.py = y, s.index = 1u << 30;
-            corners[std::size_t(y) * W1 + x] = shade(s);
+            corners[std::size_t(y) * W1 + x] = shade(s).toFloat();
         }
         shade.flush(ctx.counters);
         ctx.counters.add("image.samples", W1);
@@ -112,10 +143,11 @@ std::vector<Rgba> ImagePlane::cornerGrid(RenderContext& ctx, MakeShader& make) c
 // index order: the same image as pixel-by-pixel order.
 template <class Shader>
 void ImagePlane::boxRow(Shader& shade, int y, Image& image) const {
+    using V = ShaderValue<Shader>;
     const int W = settings_.width, spp = settings_.spp;
-    thread_local std::vector<Rgba> sum;
+    thread_local std::vector<V> sum;
     thread_local std::vector<PixelPatterns> patterns;
-    sum.assign(W, Rgba{});
+    sum.assign(W, V{});
     patterns.resize(W);
     for (int x = 0; x < W; ++x) patterns[x] = patternsOf(x, y);
     const int n = patterns_ ? patterns_->tileWidth() : 1;
@@ -124,8 +156,8 @@ void ImagePlane::boxRow(Shader& shade, int y, Image& image) const {
             for (int x = a; x < W; x += n) sum[x] += shade(sample(x, y, k, patterns[x]));
     for (int x = 0; x < W; ++x) {
         float* px = image.pixel(x, y);
-        const float n = float(spp);
-        px[0] = sum[x].r / n, px[1] = sum[x].g / n, px[2] = sum[x].b / n, px[3] = sum[x].a / n;
+        const auto n = decltype(V::r)(spp);
+        px[0] = float(sum[x].r / n), px[1] = float(sum[x].g / n), px[2] = float(sum[x].b / n), px[3] = float(sum[x].a / n);
     }
 }
 
@@ -139,7 +171,7 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
     std::vector<Rgba> corners;
     if (opt_.adaptive == AdaptiveMode::Supersample) corners = cornerGrid(ctx, makeShader);
     std::vector<std::vector<float>> rows(wide ? s.height : 0);
-    forEachRow(s, label, [&](int y) {
+    forEachRow(label, [&](int y) {
         auto shade = makeShader();
         std::int64_t evaluations = 0;
         if (!adaptive && !wide) {
@@ -153,7 +185,7 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
                 const PixelPatterns patterns = patternsOf(x, y);
                 for (int k = 0; k < s.spp; ++k) {
                     const CameraSample cs = sample(x, y, k, patterns);
-                    const Rgba v = shade(cs);
+                    const Rgba v = shade(cs).toFloat();
                     rows[y].insert(rows[y].end(), {float(cs.x), float(cs.y), v.r, v.g, v.b, v.a});
                 }
                 evaluations += s.spp;

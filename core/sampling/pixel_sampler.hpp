@@ -45,6 +45,10 @@ private:
     std::uint32_t sample_, count_;
 };
 
+// The PixelSampler dimension of a camera sample's shutter time: one no path
+// vertex reaches (paths use dimensions 2 and up, 8 per vertex).
+constexpr std::uint32_t kShutterDim = 1u << 24;
+
 // An orthonormal frame around a unit vector (Duff et al. 2017).
 struct Frame {
     Vec3f t, b, n;

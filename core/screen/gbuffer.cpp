@@ -9,6 +9,7 @@
 #include "core/screen/atrous.hpp"
 #include "core/lighting/brdf.hpp"
 #include "core/mesh/mesh_accel.hpp"
+#include "core/sampling/image_plane.hpp"
 
 namespace weft {
 
@@ -56,6 +57,10 @@ GBuffer createGBuffer(const Scene& scene, const RenderSettings& s, Counters& cou
     g.texels.resize(std::size_t(s.width) * s.height);
     const int tileRows = (s.height + kTile - 1) / kTile;
     const PixelRays camera(scene.camera, s.width, s.height);
+    // The image plane's camera samples at 1 spp: the pixel centres.
+    RenderSettings single = s;
+    single.spp = 1;
+    const ImagePlane plane(ImagePlaneOptions{}, single);
     const Vec3f origin(float(camera.eye.x()), float(camera.eye.y()), float(camera.eye.z()));
     tbb::parallel_for(0, tileRows, [&](int ty) {
         enableFastFloatMode();
@@ -66,7 +71,8 @@ GBuffer createGBuffer(const Scene& scene, const RenderSettings& s, Counters& cou
             for (int i = 0; i < 16; ++i) {
                 const int x = std::min(x0 + i % kTile, s.width - 1), y = std::min(ty * kTile + i / kTile, s.height - 1);
                 valid[i] = (x0 + i % kTile < s.width && ty * kTile + i / kTile < s.height) ? -1 : 0;
-                const Vec3d d = camera.dir(x + 0.5, y + 0.5);
+                const CameraSample c = plane.sample(x, y, 0);
+                const Vec3d d = camera.dir(c.x, c.y);
                 dirs[i] = Vec3f(float(d.x()), float(d.y()), float(d.z()));
                 rh.ray.org_x[i] = origin.x(), rh.ray.org_y[i] = origin.y(), rh.ray.org_z[i] = origin.z();
                 rh.ray.dir_x[i] = dirs[i].x(), rh.ray.dir_y[i] = dirs[i].y(), rh.ray.dir_z[i] = dirs[i].z();

@@ -1,7 +1,8 @@
 #pragma once
 // G-buffer: what deferred shading needs of the first surface behind every
-// pixel (one ray through the pixel centre), created with Embree ray packets,
-// one coherent 16-ray packet per 4x4 pixel tile.
+// pixel (one ray through the pixel centre, the image plane's camera sample
+// at 1 spp), created with Embree ray packets, one coherent 16-ray packet per
+// 4x4 pixel tile.
 #include <cstdint>
 #include <vector>
 

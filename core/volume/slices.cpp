@@ -28,6 +28,18 @@ SliceSetup makeSliceSetup(const Camera& camera, const Volume& volume, double spa
     return s;
 }
 
+std::pair<int, int> SliceRay::slices(const SliceSetup& s, double offset) const {
+    if (!inside) return {1, 0};
+    return {int(std::ceil((t0 - s.tNear) / s.spacing - offset)), int(std::floor((t1 - s.tNear) / s.spacing - offset))};
+}
+
+SliceRay sliceRayOf(const Ray& world, const Volume& volume, const SliceSetup& slices) {
+    SliceRay r;
+    r.dir = (volume.grid->transform().worldToIndex(world.origin + world.dir) - slices.eye).unitSafe();
+    if (const auto ray = toIndexRay(world, volume)) r.inside = true, r.t0 = ray->t0, r.t1 = ray->t1;
+    return r;
+}
+
 LevelRays makeLevelRays(const Camera& camera, const Volume& volume, const SliceSetup& slices, int level,
                         int paddedWidth, int paddedHeight, int imageWidth, int imageHeight) {
     LevelRays rays;
@@ -38,13 +50,12 @@ LevelRays makeLevelRays(const Camera& camera, const Volume& volume, const SliceS
     for (int y = 0; y < rays.height; ++y)
         for (int x = 0; x < rays.width; ++x) {
             const int i = rays.index(x, y);
-            const Ray world = camera.generate(scale * (x + 0.5), scale * (y + 0.5), imageWidth, imageHeight);
-            const auto ray = toIndexRay(world, volume);
-            rays.dir[i] = (volume.grid->transform().worldToIndex(world.origin + world.dir) - slices.eye).unitSafe();
+            const SliceRay ray = sliceRayOf(camera.generate(scale * (x + 0.5), scale * (y + 0.5), imageWidth, imageHeight), volume, slices);
+            rays.dir[i] = ray.dir;
             rays.first[i] = 1, rays.last[i] = 0;
-            if (!ray) continue;
-            rays.first[i] = std::max(0, int(std::ceil((ray->t0 - slices.tNear) / slices.spacing)));
-            rays.last[i] = std::min(slices.imax, int(std::floor((ray->t1 - slices.tNear) / slices.spacing)));
+            if (!ray.inside) continue;
+            const auto [first, last] = ray.slices(slices);
+            rays.first[i] = std::max(0, first), rays.last[i] = std::min(slices.imax, last);
         }
     return rays;
 }

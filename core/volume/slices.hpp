@@ -6,6 +6,7 @@
 // perspective view they keep every segment between slices i and j exactly
 // (j - i) * spacing long on every ray, so a pre-integration table needs
 // only the lengths 1..2^lmax slices.
+#include <utility>
 #include <vector>
 
 #include "core/scene/camera.hpp"
@@ -24,6 +25,19 @@ struct SliceSetup {
 // Slices covering the volume's index box, the last index rounded up to a
 // multiple of 2^lmax as the paper requires.
 SliceSetup makeSliceSetup(const Camera& camera, const Volume& volume, double spacing, int lmax);
+
+// One camera ray in index space: its unit direction from the slices' eye
+// and, when it crosses the index box, its extent there (distances from the
+// eye, voxels).
+struct SliceRay {
+    Vec3d dir;
+    bool inside = false;
+    double t0 = 0, t1 = 0;
+    // Slices inside the box when every slice moves `offset` spacings further
+    // (first > last: none); unclamped to [0, imax].
+    std::pair<int, int> slices(const SliceSetup& s, double offset = 0) const;
+};
+SliceRay sliceRayOf(const Ray& world, const Volume& volume, const SliceSetup& slices);
 
 // The rays of one pyramid level. Pixel (x, y) of level l looks through the
 // centre of its 2^l x 2^l block of level-0 pixels.

@@ -10,9 +10,8 @@
 //
 // Inputs: builtin:zoneplate, builtin:grating, builtin:checker, builtin:siemens, builtin:lines,
 // builtin:disc (or any input with --technique analytic.2d --set scene=NAME).
-// Counters: image.samples (point evaluations).
+// Counters: image.samples (point evaluations; with reference=true, pixel integrals).
 #include "core/sampling/analytic2d.hpp"
-#include "core/sampling/pixel_loop.hpp"
 #include "core/sampling/image_plane.hpp"
 #include "plugins/technique.hpp"
 
@@ -25,8 +24,7 @@ std::vector<ParamSpec> analyticParams() {
         enumParam("scene", "zoneplate", {"zoneplate", "grating", "checker", "siemens", "lines", "disc"}, "which analytic image"),
         boolParam("reference", false, "exact pixel integrals (box filter, whole shutter) instead of sampling"),
     };
-    for (ParamSpec& s : imagePlaneParamSpecs()) specs.push_back(std::move(s));
-    return specs;
+    return withImagePlaneParams(std::move(specs));
 }
 
 class Analytic2D final : public Technique {
@@ -38,7 +36,7 @@ public:
     Image render(const Scene&, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
         const AnalyticImage image(scene_, s.width, s.height);
-        if (reference_) return exact(image, s);
+        if (reference_) return exact(image, ctx);
         const ImagePlane plane(plane_, s);
         struct Shader {
             const AnalyticImage& image;
@@ -52,16 +50,20 @@ public:
     }
 
 private:
-    static Image exact(const AnalyticImage& image, const RenderSettings& s) {
-        Image out = Image::rgba(s.width, s.height);
-        forEachRow(s, "analytic.2d reference", [&](int y) {
-            for (int x = 0; x < s.width; ++x) {
-                const float v = float(image.pixelIntegral(x, y));
-                float* px = out.pixel(x, y);
-                px[0] = px[1] = px[2] = v, px[3] = 1.0f;
+    // One camera sample per pixel through the plane; the shader returns the
+    // pixel's exact integral wherever the sample lies.
+    static Image exact(const AnalyticImage& image, RenderContext& ctx) {
+        RenderSettings single = ctx.settings;
+        single.spp = 1;
+        struct Exact {
+            const AnalyticImage& image;
+            Rgba operator()(const CameraSample& c) const {
+                const float v = float(image.pixelIntegral(c.px, c.py));
+                return {v, v, v, 1.0f};
             }
-        });
-        return out;
+            void flush(Counters&) const {}
+        };
+        return ImagePlane(ImagePlaneOptions{}, single).render(ctx, "analytic.2d reference", [&] { return Exact{image}; });
     }
 
     AnalyticScene scene_;

@@ -30,10 +30,16 @@
 //   glossy     phong | blinn: the glossy lobe of materials with Ks
 //   jitter     sample positions inside the pixel; false shoots every sample
 //              through the pixel centre, the way G-buffer techniques see it
+//   pattern, filter, adaptive...  image-plane sampling and reconstruction
+//              (core/sampling/image_plane.hpp): a camera sample gives the
+//              ray's position and shutter time, the path's other dimensions
+//              still come from the sampler of (pixel, sample index). With
+//              no pattern the plane's positions are the sampler's
+//              dimensions 0 and 1 (jitter) or pixel centres, as before.
 //   shadow_tracking  delta | ratio: the transmittance estimator of shadow
 //              rays through volumes
 //
-// Counters: rays.camera, rays.bounce, rays.shadow; with volumes also
+// Counters: rays.camera, image.samples, rays.bounce, rays.shadow; with volumes also
 // volume.lookups (density reads) and volume.collisions (tentative
 // collisions of free flights and shadow rays).
 #include <algorithm>
@@ -47,7 +53,7 @@
 #include "core/lighting/emitters.hpp"
 #include "core/lighting/medium_light.hpp"
 #include "core/mesh/mesh_accel.hpp"
-#include "core/sampling/pixel_loop.hpp"
+#include "core/sampling/image_plane.hpp"
 #include "core/sampling/pixel_sampler.hpp"
 #include "core/volume/medium.hpp"
 #include "plugins/technique.hpp"
@@ -90,13 +96,35 @@ void requireLights(const Scene& scene) {
         throw Error("mesh.pathtrace: the scene '" + scene.source + "' has volumes but no light (add a point or directional light)");
 }
 
+// jitter chooses the plain default: the stratified sampler's positions, or
+// pixel centres (a pattern or adaptive sampling would override it).
+ImagePlaneOptions planeOptions(const ParamSet& p) {
+    ImagePlaneOptions o = readImagePlaneOptions(p);
+    o.plain = p.getBool("jitter") ? PlainSamples::Stratified : PlainSamples::Centres;
+    if (o.plain == PlainSamples::Centres && (!o.pattern.empty() || o.adaptive != AdaptiveMode::Off))
+        throw Error("mesh.pathtrace: jitter=false shoots pixel centres, but pattern/adaptive place the samples; choose one");
+    return o;
+}
+
+std::vector<ParamSpec> pathtraceParams() {
+    std::vector<ParamSpec> specs = {
+        intParam("max_depth", 8, 1, 1024, "scattering events (surface or medium) per path: 1 = direct light (single scattering), 2 = one indirect bounce"),
+        intParam("rr_depth", 3, 1, 1024, "path vertices before Russian roulette may end a path"),
+        boolParam("jitter", true, "without a pattern: stratified random positions inside each pixel (antialiasing); "
+                                  "false: pixel centres at every spp, as a G-buffer sees them (not with pattern/adaptive)"),
+        enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)"),
+        enumParam("shadow_tracking", "ratio", {"ratio", "delta"}, "transmittance of shadow rays through volumes: ratio tracking (smooth) or delta tracking (binary)"),
+    };
+    return withImagePlaneParams(std::move(specs));
+}
+
 bool finite(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 double maxChannel(const Vec3d& v) { return std::max({v[0], v[1], v[2]}); }
 
 class PathTracer final : public Technique {
 public:
     PathTracer(const Scene& scene, const ParamSet& p)
-        : maxDepth_(int(p.getInt("max_depth"))), rrDepth_(int(p.getInt("rr_depth"))), jitter_(p.getBool("jitter")),
+        : maxDepth_(int(p.getInt("max_depth"))), rrDepth_(int(p.getInt("rr_depth"))), plane_(planeOptions(p)),
           model_(Brdf::modelNamed(p.getString("glossy"))), tracking_(shadowTrackingNamed(p.getString("shadow_tracking"))) {
         requireLights(scene);
     }
@@ -110,46 +138,54 @@ public:
         emitters_ = scene.meshes.empty() ? &noEmitters : &scene.emitters();
         eps_ = rayEpsilon(scene);
         const Medium medium(scene.volumes);
-        Image image = Image::rgba(s.width, s.height);
-        forEachRow(s, "mesh.pathtrace", [&](int y) {
-            enableFastFloatMode();
-            PathCounts counts;
-            std::optional<MediumRow> row;
-            if (!medium.empty()) row.emplace(accel, medium, tracking_);
-            for (int x = 0; x < s.width; ++x) {
-                Vec3f sum(0, 0, 0);
-                float alpha = 0;
-                for (int i = 0; i < s.spp; ++i) {
-                    const PixelSampler sampler(s.seed, x, y, std::uint32_t(i), std::uint32_t(s.spp));
-                    const double jx = jitter_ ? sampler.get(0) : 0.5, jy = jitter_ ? sampler.get(1) : 0.5;
-                    const Ray ray = scene.cameraAt(sampler.get(kTimeDim)).generate(x + jx, y + jy, s.width, s.height);
-                    const Vec3f d(float(ray.dir.x()), float(ray.dir.y()), float(ray.dir.z()));
-                    const Vec3f o(float(ray.origin.x()), float(ray.origin.y()), float(ray.origin.z()));
-                    if (!row) {
-                        sum += radiance(scene, accel, o, d, sampler, counts);
-                        continue;
-                    }
-                    Rng rng(hashCombine(hashCombine(s.seed ^ kMediumStream, (std::uint64_t(std::uint32_t(x)) << 32) | std::uint32_t(y)), std::uint64_t(i)));
-                    const PathSample p = radianceThroughMedia(scene, accel, o, d, sampler, rng, *row, counts);
-                    sum += p.L, alpha += p.alpha;
-                }
-                float* px = image.pixel(x, y);
-                const float inv = 1.0f / float(s.spp);
-                px[0] = sum.x() * inv, px[1] = sum.y() * inv, px[2] = sum.z() * inv, px[3] = row ? alpha * inv : 1.0f;
-            }
-            ctx.counters.add("rays.camera", std::int64_t(s.width) * s.spp);
-            ctx.counters.add("rays.bounce", counts.bounce);
-            ctx.counters.add("rays.shadow", counts.shadow + (row ? row->shadow.traced : 0));
-            if (!row) return;
-            ctx.counters.add("volume.lookups", row->flight.lookups + row->shadow.lookups());
-            ctx.counters.add("volume.collisions", row->collisions + row->shadow.collisions);
-        });
-        return image;
+        const ImagePlane plane(plane_, s);
+        return plane.render(ctx, "mesh.pathtrace", [&] { return Shader(*this, scene, accel, medium, s); });
     }
 
 private:
+    // One per row (made on the thread that renders it): the row's medium
+    // rays and counts. A camera sample gives the ray's position and time;
+    // the path's other dimensions come from the PixelSampler and generator
+    // of (pixel, sample index), as they did before the image plane.
+    struct Shader {
+        const PathTracer& self;
+        const Scene& scene;
+        const MeshAccel& accel;
+        const RenderSettings& s;
+        std::optional<MediumRow> row;  // built in place, never copied
+        PathCounts counts;
+        std::int64_t cameraRays = 0;
+
+        Shader(const PathTracer& t, const Scene& sc, const MeshAccel& a, const Medium& medium, const RenderSettings& st)
+            : self(t), scene(sc), accel(a), s(st) {
+            enableFastFloatMode();
+            if (!medium.empty()) row.emplace(accel, medium, self.tracking_);
+        }
+        Rgba operator()(const CameraSample& c) {
+            const PixelSampler sampler(s.seed, c.px, c.py, c.index, std::uint32_t(s.spp));
+            const Ray ray = scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
+            const Vec3f d = toVec3f(ray.dir), o = toVec3f(ray.origin);
+            ++cameraRays;
+            if (!row) {
+                const Vec3f L = self.radiance(scene, accel, o, d, sampler, counts);
+                return {L.x(), L.y(), L.z(), 1.0f};
+            }
+            Rng rng(hashCombine(hashCombine(s.seed ^ kMediumStream, (std::uint64_t(std::uint32_t(c.px)) << 32) | std::uint32_t(c.py)),
+                                std::uint64_t(c.index)));
+            const PathSample p = self.radianceThroughMedia(scene, accel, o, d, sampler, rng, *row, counts);
+            return {p.L.x(), p.L.y(), p.L.z(), p.alpha};
+        }
+        void flush(Counters& counters) const {
+            counters.add("rays.camera", cameraRays);
+            counters.add("rays.bounce", counts.bounce);
+            counters.add("rays.shadow", counts.shadow + (row ? row->shadow.traced : 0));
+            if (!row) return;
+            counters.add("volume.lookups", row->flight.lookups + row->shadow.lookups());
+            counters.add("volume.collisions", row->collisions + row->shadow.collisions);
+        }
+    };
+
     static constexpr std::uint32_t kDimsPerVertex = 8;
-    static constexpr std::uint32_t kTimeDim = 1u << 24;  // the shutter time: a dimension no path vertex reaches
     static constexpr std::uint64_t kMediumStream = 0x6d656469756dull;  // keys the tracking generator
 
     Vec3f radiance(const Scene& scene, const MeshAccel& accel, Vec3f o, Vec3f d, const PixelSampler& sampler,
@@ -240,7 +276,7 @@ private:
 
     int maxDepth_;
     int rrDepth_;
-    bool jitter_;
+    ImagePlaneOptions plane_;
     GlossyModel model_;
     ShadowTracking tracking_;
     float eps_ = 1e-5f;
@@ -250,12 +286,7 @@ private:
 const TechniqueRegistrar registrar{{
     "mesh.pathtrace",
     "unbiased volumetric path tracing of meshes and volumes with next-event estimation (the reference for every technique)",
-    ParamTable("mesh.pathtrace",
-               {intParam("max_depth", 8, 1, 1024, "scattering events (surface or medium) per path: 1 = direct light (single scattering), 2 = one indirect bounce"),
-                intParam("rr_depth", 3, 1, 1024, "path vertices before Russian roulette may end a path"),
-                boolParam("jitter", true, "random positions inside each pixel (antialiasing); false: pixel centres, as a G-buffer sees them"),
-                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)"),
-                enumParam("shadow_tracking", "ratio", {"ratio", "delta"}, "transmittance of shadow rays through volumes: ratio tracking (smooth) or delta tracking (binary)")}),
+    ParamTable("mesh.pathtrace", pathtraceParams()),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<PathTracer>(scene, p); },
     /*motionBlur=*/true,
     /*renders=*/Content::VolumesAndMeshes,

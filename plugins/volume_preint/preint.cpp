@@ -6,6 +6,10 @@
 // slice). This is the "tex.-based" column of Kraus et al. 2007, Tables 2-3:
 // the reference volume.adaptive3d is measured against at the same spacing.
 //
+// Camera samples come from the image plane (core/sampling/image_plane.hpp:
+// pattern, filter, adaptive...), each one ray through every slice; the
+// default is one ray through each pixel centre at 1 spp, as always.
+//
 // offset_pattern (optional) moves every slice of pixel (x, y) by a fraction
 // of the spacing taken from a pattern set's third coordinate, e.g.
 // interleaved:4x4,basis=jittered: the 16 pixels of each tile sample 16
@@ -22,7 +26,7 @@
 // colour = volume + (1 - alpha) x surface, alpha 1; the volume does not
 // shadow surfaces.
 //
-// Counters: rays.camera, slices, volume.samples (one trilinear lookup per
+// Counters: rays.camera, image.samples, slices, volume.samples (one trilinear lookup per
 // slice inside the volume: the back sample of one segment is the front
 // sample of the next), composite.ops; with meshes also rays.surface and
 // rays.shadow.
@@ -30,7 +34,7 @@
 
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/surface_shading.hpp"
-#include "core/sampling/pixel_loop.hpp"
+#include "core/sampling/image_plane.hpp"
 #include "core/base/rng.hpp"
 #include "core/sampling/pattern_set.hpp"
 #include "core/volume/volume_ray.hpp"
@@ -49,15 +53,7 @@ std::vector<ParamSpec> preintParams() {
                                 "per-pixel slice offsets from a pattern set's third coordinate, e.g. "
                                 "interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: none",
                                 [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }));
-    return specs;
-}
-
-// Slices inside the volume on pixel (x, y)'s ray when they move `offset` spacings further.
-std::pair<int, int> shiftedSlices(const Scene& scene, const SliceSetup& slices, int x, int y, int w, int h, double offset) {
-    const auto ray = toIndexRay(scene.camera.generate(x + 0.5, y + 0.5, w, h), scene.volumes.front());
-    if (!ray) return {1, 0};
-    return {int(std::ceil((ray->t0 - slices.tNear) / slices.spacing - offset)),
-            int(std::floor((ray->t1 - slices.tNear) / slices.spacing - offset))};
+    return withImagePlaneParams(std::move(specs));
 }
 
 // Index-space distance from the eye to the first surface on the pixel's ray (infinity: none).
@@ -73,7 +69,8 @@ struct SurfaceCounts {
 
 class Preint final : public Technique {
 public:
-    Preint(const Scene& scene, const ParamSet& p) : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")) {
+    Preint(const Scene& scene, const ParamSet& p)
+        : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")), plane_(readImagePlaneOptions(p)) {
         requireSliceableVolume(scene, "volume.preint");
         requireSurfaceLights(scene, "volume.preint");
     }
@@ -82,70 +79,95 @@ public:
         const RenderSettings& s = ctx.settings;
         const Volume& vol = scene.volumes.front();
         const SliceSetup slices = makeSliceSetup(scene.camera, vol, params_.spacing, 0);
-        const LevelRays rays = makeLevelRays(scene.camera, vol, slices, 0, s.width, s.height, s.width, s.height);
         SegmentTables tables(vol.tf, params_.spacing, 1, params_.tableResolution, params_.precision);
-        const PreintegrationTable& table = tables.forSlices(1);
-        Image image = Image::rgba(s.width, s.height);
         std::optional<PatternSet> offsets;
-        if (!offsetPattern_.empty()) offsets = makePatternSet(offsetPattern_, 1, hashCombine(s.seed, 0x0ff5));
+        if (!offsetPattern_.empty()) offsets = makePatternSet(offsetPattern_, s.spp, hashCombine(s.seed, 0x0ff5));
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // built before the pixel loop
         if (accel) scene.emitters();
-        const float eps = accel ? rayEpsilon(scene) : 0.0f;
-        forEachRow(s, "volume.preint", [&](int y) {
-            ScalarSampler sampler(vol);
-            std::int64_t samples = 0, composites = 0;
-            SurfaceCounts surfaces;
-            for (int x = 0; x < s.width; ++x) {
-                const int i = rays.index(x, y);
-                SegmentCompositor acc;
-                const double shift = offsets ? offsets->sample(x, y, 0).t : 0.0;
-                const auto [first, last] = offsets ? shiftedSlices(scene, slices, x, y, s.width, s.height, shift)
-                                                   : std::pair<int, int>(rays.first[i], rays.last[i]);
-                Ray worldRay;
-                SurfaceHit hit;
-                if (accel) worldRay = scene.camera.generate(x + 0.5, y + 0.5, s.width, s.height), hit = firstSurface(*accel, worldRay);
-                const double tHit = surfaceDistance(vol, worldRay, hit);
-                // Segments wholly outside the volume are transparent: start one slice before it.
-                const int from = offsets ? first - 1 : std::max(first - 1, 0), to = offsets ? last + 1 : std::min(last + 1, slices.imax);
-                auto position = [&](int k) { return slices.t(k) + shift * slices.spacing; };
-                auto scalarAt = [&](int k) {
-                    const bool inside = k >= first && k <= last;
-                    samples += inside;
-                    return inside ? sampler.sample(slices.eye + rays.dir[i] * position(k)) : sampler.background();
-                };
-                float prev = scalarAt(from);
-                for (int k = from + 1; k <= to; ++k) {
-                    if (position(k) > tHit) {  // the surface cuts this segment: its true length, exactly
-                        const double length = tHit - position(k - 1);
-                        if (length > 0) {
-                            const float back = sampler.sample(slices.eye + rays.dir[i] * tHit);
-                            ++samples;
-                            acc.add(PreintegrationTable::integrateSegment(vol.tf, prev, back, length));
-                            ++composites;
-                        }
-                        break;
-                    }
-                    const float cur = scalarAt(k);
-                    acc.add(table.lookup(0, prev, cur));
-                    ++composites;
-                    prev = cur;
-                }
-                float* px = image.pixel(x, y);
-                px[0] = acc.r, px[1] = acc.g, px[2] = acc.b, px[3] = acc.a;
-                if (hit.valid()) shadeBehind(scene, *accel, worldRay, hit, PixelSampler(s.seed, x, y, 0, 1), eps, px, surfaces);
-            }
-            ctx.counters.add("volume.samples", samples);
-            ctx.counters.add("composite.ops", composites);
-            ctx.counters.add("rays.camera", s.width);
-            if (!accel) return;  // mesh-free renders keep their counters as they were
-            ctx.counters.add("rays.surface", surfaces.surface);
-            ctx.counters.add("rays.shadow", surfaces.shadow);
-        });
+        const Frame frame{scene, vol, slices, tables.forSlices(1), offsets, accel, accel ? rayEpsilon(scene) : 0.0f, s};
+        const ImagePlane plane(plane_, s);
+        Image image = plane.render(ctx, "volume.preint", [&] { return Shader(frame); });
         ctx.counters.add("slices", slices.imax + 1);
         return image;
     }
 
 private:
+    // What every camera sample of one render shares.
+    struct Frame {
+        const Scene& scene;
+        const Volume& vol;
+        const SliceSetup& slices;
+        const PreintegrationTable& table;
+        const std::optional<PatternSet>& offsets;
+        const MeshAccel* accel;
+        float eps;
+        const RenderSettings& s;
+    };
+
+    // One per row: a grid sampler and the counts. Each camera sample casts
+    // one ray through every slice; at the pixel centre it is the ray the
+    // renderer always cast there.
+    struct Shader {
+        const Frame& f;
+        ScalarSampler sampler;
+        std::int64_t rays = 0, samples = 0, composites = 0;
+        SurfaceCounts surfaces;
+
+        explicit Shader(const Frame& frame) : f(frame), sampler(frame.vol) {}
+        Rgba operator()(const CameraSample& c) {
+            const SliceSetup& slices = f.slices;
+            const Ray worldRay = f.scene.camera.generate(c.x, c.y, f.s.width, f.s.height);
+            const SliceRay ray = sliceRayOf(worldRay, f.vol, slices);
+            const double shift = f.offsets ? f.offsets->sample(c.px, c.py, int(c.index % std::uint32_t(f.s.spp))).t : 0.0;
+            const auto [first, last] = f.offsets ? ray.slices(slices, shift) : clamped(ray.slices(slices), slices);
+            ++rays;
+            const SurfaceHit hit = f.accel ? firstSurface(*f.accel, worldRay) : SurfaceHit{};
+            const double tHit = surfaceDistance(f.vol, worldRay, hit);
+            SegmentCompositor acc;
+            // Segments wholly outside the volume are transparent: start one slice before it.
+            const int from = f.offsets ? first - 1 : std::max(first - 1, 0), to = f.offsets ? last + 1 : std::min(last + 1, slices.imax);
+            auto position = [&](int k) { return slices.t(k) + shift * slices.spacing; };
+            auto scalarAt = [&](int k) {
+                const bool inside = k >= first && k <= last;
+                samples += inside;
+                return inside ? sampler.sample(slices.eye + ray.dir * position(k)) : sampler.background();
+            };
+            float prev = scalarAt(from);
+            for (int k = from + 1; k <= to; ++k) {
+                if (position(k) > tHit) {  // the surface cuts this segment: its true length, exactly
+                    const double length = tHit - position(k - 1);
+                    if (length > 0) {
+                        const float back = sampler.sample(slices.eye + ray.dir * tHit);
+                        ++samples;
+                        acc.add(PreintegrationTable::integrateSegment(f.vol.tf, prev, back, length));
+                        ++composites;
+                    }
+                    break;
+                }
+                const float cur = scalarAt(k);
+                acc.add(f.table.lookup(0, prev, cur));
+                ++composites;
+                prev = cur;
+            }
+            float px[4] = {acc.r, acc.g, acc.b, acc.a};
+            if (hit.valid())
+                shadeBehind(f.scene, *f.accel, worldRay, hit, PixelSampler(f.s.seed, c.px, c.py, c.index, std::uint32_t(f.s.spp)), f.eps, px, surfaces);
+            return {px[0], px[1], px[2], px[3]};
+        }
+        void flush(Counters& counters) const {
+            counters.add("volume.samples", samples);
+            counters.add("composite.ops", composites);
+            counters.add("rays.camera", rays);
+            if (!f.accel) return;  // mesh-free renders keep their counters as they were
+            counters.add("rays.surface", surfaces.surface);
+            counters.add("rays.shadow", surfaces.shadow);
+        }
+    };
+
+    static std::pair<int, int> clamped(std::pair<int, int> r, const SliceSetup& slices) {
+        return {std::max(0, r.first), std::min(slices.imax, r.second)};
+    }
+
     // The surface seen through the volume's pixel px (premultiplied RGBA).
     static void shadeBehind(const Scene& scene, const MeshAccel& accel, const Ray& ray, const SurfaceHit& hit,
                             const PixelSampler& sampler, float eps, float* px, SurfaceCounts& counts) {
@@ -157,6 +179,7 @@ private:
 
     SliceParams params_;
     std::string offsetPattern_;
+    ImagePlaneOptions plane_;
 };
 
 const TechniqueRegistrar registrar{{

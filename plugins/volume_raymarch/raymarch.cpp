@@ -38,7 +38,6 @@
 #include <limits>
 #include <optional>
 
-#include "core/sampling/pixel_loop.hpp"
 #include "core/base/rng.hpp"
 #include "core/sampling/image_plane.hpp"
 #include "core/lighting/delta_lights.hpp"
@@ -68,8 +67,7 @@ std::vector<ParamSpec> raymarchParams() {
                                           "e.g. interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: jitter or centre",
                     [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }),
     };
-    for (ParamSpec& spec : imagePlaneParamSpecs()) specs.push_back(std::move(spec));
-    return specs;
+    return withImagePlaneParams(std::move(specs));
 }
 
 // Per-pixel-sample counts of one row's shader.

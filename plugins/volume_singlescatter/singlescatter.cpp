@@ -14,6 +14,10 @@
 // weft's estimators offset each pixel's primary samples randomly (jitter),
 // which trades vdb_render's concentric rings for noise.
 //
+// Camera samples come from the image plane (core/sampling/image_plane.hpp:
+// pattern, filter, adaptive...); with no pattern, the pixel centre at 1 spp
+// and uniform random positions beyond, as before.
+//
 // compat=vdb_render also takes vdb_render's camera options and builds its
 // camera (scatter_params.hpp).
 //
@@ -24,7 +28,7 @@
 // (the cache keeps a visibility grid). step and shadowstep count voxel
 // lengths (cube root of a voxel's volume): index units on uniform grids.
 //
-// Counters: rays.camera, volume.samples (density lookups along primary
+// Counters: rays.camera, image.samples, volume.samples (density lookups along primary
 // rays), shadow.samples (density lookups for shadows, the cache included),
 // mesh.shadow_rays (with meshes only).
 #include <cmath>
@@ -32,7 +36,7 @@
 #include "core/base/rng.hpp"
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/surface_shading.hpp"
-#include "core/sampling/pixel_loop.hpp"
+#include "core/sampling/image_plane.hpp"
 #include "plugins/technique.hpp"
 #include "plugins/volume_singlescatter/scatter_params.hpp"
 #include "plugins/volume_singlescatter/scatter_tracer.hpp"
@@ -43,7 +47,9 @@ namespace {
 
 class SingleScatter final : public Technique {
 public:
-    SingleScatter(const Scene& scene, const ParamSet& p) : paramSet_(p) { requireSurfaceLights(scene, "volume.singlescatter"); }
+    SingleScatter(const Scene& scene, const ParamSet& p) : paramSet_(p), plane_(readImagePlaneOptions(p)) {
+        requireSurfaceLights(scene, "volume.singlescatter");
+    }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
@@ -56,46 +62,50 @@ public:
         ScatterTracer tracer(scene, params_, std::move(volumes), accel, accel ? rayEpsilon(scene) : 0.0f);
         if (params_.estimator == ShadowEstimator::Cached) tracer.buildCaches(ctx);
         const Camera camera = params_.camera.value_or(scene.camera);
-        Image image = Image::rgba(s.width, s.height);
-        forEachRow(s, "volume.singlescatter", [&](int y) {
-            auto row = tracer.row();
-            for (int x = 0; x < s.width; ++x) shadePixel(tracer, camera, s, x, y, *row, image.pixel(x, y));
-            const ScatterTracer::Counts& n = ScatterTracer::counts(*row);
-            ctx.counters.add("rays.camera", std::int64_t(s.width) * s.spp);
-            ctx.counters.add("volume.samples", n.samples);
-            ctx.counters.add("shadow.samples", n.shadowSamples);
-            if (accel) ctx.counters.add("mesh.shadow_rays", n.meshShadowRays);
-        });
-        return image;
+        const ImagePlane plane(plane_, s);
+        return plane.render(ctx, "volume.singlescatter", [&] { return Shader{*this, tracer, camera, s, accel != nullptr, tracer.row()}; });
     }
 
 private:
-    void shadePixel(const ScatterTracer& tracer, const Camera& camera, const RenderSettings& s, int x, int y,
-                    ScatterTracer::Row& row, float* px) const {
-        Vec3d sum(0.0);
-        double alpha = 0;
-        for (int i = 0; i < s.spp; ++i) {
-            const double u = s.spp == 1 ? 0.5 : pixelRandom(s.seed, x, y, i, 1);
-            const double v = s.spp == 1 ? 0.5 : pixelRandom(s.seed, x, y, i, 2);
-            Rng rng(hashCombine(s.seed, (std::uint64_t(y) * s.width + x) * 1024 + i));
-            const float offset = params_.jitter ? pixelRandom(s.seed, x, y, i, 0) : 0.0f;
+    // One per row: the tracer's row state. A camera sample is one primary
+    // ray; its offset along the ray and its generator are keyed by
+    // (pixel, sample index). Summed in double, as before the image plane.
+    struct Shader {
+        const SingleScatter& self;
+        const ScatterTracer& tracer;
+        const Camera& camera;
+        const RenderSettings& s;
+        bool meshes;
+        std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> row;
+        std::int64_t rays = 0;
+
+        RgbaD operator()(const CameraSample& c) {
+            Rng rng(hashCombine(s.seed, (std::uint64_t(c.py) * s.width + c.px) * 1024 + c.index));
+            const float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.0f;
             Vec3d T(1.0);
             bool surface = false;
-            sum += tracer.radiance(camera.generate(x + u, y + v, s.width, s.height), offset, row, rng, T, surface);
-            alpha += surface ? 1.0 : 1.0 - (T[0] + T[1] + T[2]) / 3.0;
+            ++rays;
+            const Vec3d L = tracer.radiance(camera.generate(c.x, c.y, s.width, s.height), offset, *row, rng, T, surface);
+            return {L[0], L[1], L[2], surface ? 1.0 : 1.0 - (T[0] + T[1] + T[2]) / 3.0};
         }
-        for (int c = 0; c < 3; ++c) px[c] = float(sum[c] / s.spp);
-        px[3] = float(alpha / s.spp);
-    }
+        void flush(Counters& counters) const {
+            const ScatterTracer::Counts& n = ScatterTracer::counts(*row);
+            counters.add("rays.camera", rays);
+            counters.add("volume.samples", n.samples);
+            counters.add("shadow.samples", n.shadowSamples);
+            if (meshes) counters.add("mesh.shadow_rays", n.meshShadowRays);
+        }
+    };
 
     ParamSet paramSet_;
+    ImagePlaneOptions plane_;
     ScatterParams params_;
 };
 
 const TechniqueRegistrar registrar{{
     "volume.singlescatter",
     "single scattering from directional and point lights, vdb_render's model and names, faster estimators",
-    ParamTable("volume.singlescatter", scatterParamSpecs()),
+    ParamTable("volume.singlescatter", withImagePlaneParams(scatterParamSpecs())),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<SingleScatter>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
