@@ -29,10 +29,19 @@
 // sampleCount. The beauty is direct + kd / pi * indirect (the glossy part of
 // indirect light is left out) + emission seen directly.
 // Counters: samples.indirect, rays.camera, rays.indirect, rays.shadow,
-// budget.active_pixels, budget.minimum (applied), budget.invalid_importance.
+// budget.active_pixels, budget.minimum (applied), budget.invalid_importance;
+// with volumes volume.transmittance (segments marched), volume.steps,
+// volume.lookups.
+//
+// Volumes absorb and out-scatter, never scatter in
+// (core/lighting/volume_attenuation.hpp): a pixel's surface colour is
+// multiplied by the transmittance from the eye, every indirect path segment
+// and shadow ray by its own; a pixel that sees no surface has alpha
+// 1 - transmittance. The budget and the filter guides are unchanged.
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <optional>
 
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/delta_lights.hpp"
@@ -53,6 +62,7 @@ struct Params {
     int minSamples, window, bounces, rrDepth, directSamples;
     double minFraction;
     bool countWeights;
+    double volumeStep;
     std::int64_t batch;
     AtrousSettings atrous;
 };
@@ -65,6 +75,7 @@ Params readParams(const ParamSet& p) {
     v.bounces = int(p.getInt("bounces")), v.rrDepth = int(p.getInt("rr_depth"));
     v.directSamples = int(p.getInt("direct_samples")), v.batch = p.getInt("batch");
     v.countWeights = p.getBool("count_weights");
+    v.volumeStep = p.getFloat("volume_step");
     v.minFraction = p.getFloat("min_fraction");
     v.atrous = atrousSettingsFrom(p);
     return v;
@@ -73,7 +84,8 @@ Params readParams(const ParamSet& p) {
 // The incident indirect irradiance of every pixel: the mean of its samples,
 // NaN (a missing sample for the filter) where it has none.
 std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est, const std::vector<std::uint32_t>& counts,
-                                  std::int64_t batchSize, std::uint64_t seed, Counters& counters) {
+                                  std::int64_t batchSize, std::uint64_t seed, const VolumeAttenuation& volumes,
+                                  Counters& counters) {
     const std::vector<std::int64_t> offsets = exclusiveScan(counts);
     const SampleBatches batches(offsets, batchSize > 0 ? batchSize : std::int64_t(counts.size()));
     std::vector<float> sums(3 * counts.size(), 0.0f);
@@ -86,13 +98,16 @@ std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samplePixel.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
             enableFastFloatMode();
             PathRayCounts rays;
+            std::optional<SegmentAttenuation> media;
+            if (volumes.active()) media.emplace(volumes);
             for (std::size_t k = r.begin(); k != r.end(); ++k) {
                 const std::uint32_t pixel = samplePixel[k];
                 const int x = int(pixel % std::uint32_t(g.width)), y = int(pixel / std::uint32_t(g.width));
                 const PixelSampler sampler(seed, x, y, batches.indexInPixel(b0 + std::int64_t(k), pixel), counts[pixel]);
-                results[k] = est.irradiance(g.texels[pixel], sampler, rays);
+                results[k] = est.irradiance(g.texels[pixel], sampler, rays, media ? &*media : nullptr);
             }
             counters.add("rays.indirect", rays.bounce), counters.add("rays.shadow", rays.shadow);
+            if (media) media->report(counters);
         });
         // Store: each pixel adds its samples in order, so batches change nothing.
         batches.forEachPixelRun(b, [&](std::uint32_t pixel, std::int64_t s0, std::int64_t s1) {
@@ -125,14 +140,20 @@ public:
         const std::vector<std::uint32_t> counts = sampleCounts(guides, active, importance, s, ctx);
         const IndirectEstimator est(scene, p_.bounces, p_.rrDepth);
         std::vector<float> raw;
-        { ScopedTimer t(ctx.timings, "IS.indirect"); raw = sampleIndirect(g, est, counts, p_.batch, s.seed, ctx.counters); }
+        const VolumeAttenuation volumes(scene, p_.volumeStep);
+        std::vector<Vec3f> eyeT;
+        if (volumes.active()) {
+            ScopedTimer t(ctx.timings, "VT.transmittance");
+            eyeT = cameraTransmittance(scene, g, volumes, ctx.counters);
+        }
+        { ScopedTimer t(ctx.timings, "IS.indirect"); raw = sampleIndirect(g, est, counts, p_.batch, s.seed, volumes, ctx.counters); }
         std::vector<float> filtered = raw;
         if (p_.mode != Mode::Uniform) {
             ScopedTimer t(ctx.timings, "AT.atrous");
             atrousFilter(filtered, g.width, g.height, guides, p_.atrous, countWeights(counts));
         }
         ScopedTimer t(ctx.timings, "C.compose");
-        return compose(scene, g, est, raw, filtered, importance, counts, s.seed, ctx.counters);
+        return compose(scene, g, est, raw, filtered, importance, counts, s.seed, volumes, eyeT, ctx.counters);
     }
 
 private:
@@ -171,7 +192,8 @@ private:
 
     Image compose(const Scene& scene, const GBuffer& g, const IndirectEstimator& est, const std::vector<float>& raw,
                   const std::vector<float>& filtered, const std::vector<float>& importance,
-                  const std::vector<std::uint32_t>& counts, std::uint64_t seed, Counters& counters) const {
+                  const std::vector<std::uint32_t>& counts, std::uint64_t seed, const VolumeAttenuation& volumes,
+                  const std::vector<Vec3f>& eyeT, Counters& counters) const {
         Image img(g.width, g.height, {"R", "G", "B", "A", "indirect.R", "indirect.G", "indirect.B", "indirect_raw.R",
                                       "indirect_raw.G", "indirect_raw.B", "direct.R", "direct.G", "direct.B", "albedo.R",
                                       "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "Z", "importance",
@@ -179,17 +201,23 @@ private:
         tbb::parallel_for(0, g.height, [&](int y) {
             enableFastFloatMode();
             PathRayCounts rays;
+            std::optional<SegmentAttenuation> attenuation;
+            if (volumes.active()) attenuation.emplace(volumes);
+            SegmentAttenuation* media = attenuation ? &*attenuation : nullptr;
             for (int x = 0; x < g.width; ++x) {
                 const std::size_t i = std::size_t(y) * g.width + x;
                 const GTexel& t = g.texels[i];
                 float* px = img.pixel(x, y);
                 px[23] = importance[i], px[24] = float(counts[i]);
-                if (t.background()) continue;
+                if (t.background()) {
+                    if (media) px[3] = backgroundAlpha(eyeT[i]);
+                    continue;
+                }
                 const Vec3f wo = (Vec3f(float(scene.camera.eye.x()), float(scene.camera.eye.y()), float(scene.camera.eye.z())) - t.position).unitSafe();
                 Vec3f direct(0, 0, 0);
                 for (int k = 0; k < p_.directSamples; ++k) {
                     const PixelSampler sampler(seed ^ 0xd1b54a32d192ed03ull, x, y, std::uint32_t(k), std::uint32_t(p_.directSamples));
-                    direct += est.direct(t.position, t.normal, wo, std::uint32_t(t.material), sampler, 0, rays);
+                    direct += est.direct(t.position, t.normal, wo, std::uint32_t(t.material), sampler, 0, rays, media);
                 }
                 direct /= float(std::max(1, p_.directSamples));
                 const Material& mat = scene.materials[std::size_t(t.material)];
@@ -197,7 +225,8 @@ private:
                 Vec3f e(filtered[3 * i], filtered[3 * i + 1], filtered[3 * i + 2]);
                 if (!std::isfinite(e.x() + e.y() + e.z())) e = Vec3f(0, 0, 0);  // unsampled and unfiltered
                 const Vec3f eRaw = counts[i] ? Vec3f(raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]) : Vec3f(0, 0, 0);
-                const Vec3f rgb = direct + Brdf::of(mat).kd * e * float(1 / M_PI);
+                Vec3f rgb = direct + Brdf::of(mat).kd * e * float(1 / M_PI);
+                if (media) rgb *= eyeT[i], direct *= eyeT[i];
                 const float values[23] = {rgb.x(), rgb.y(), rgb.z(), 1.0f, e.x(), e.y(), e.z(), eRaw.x(), eRaw.y(), eRaw.z(),
                                           direct.x(), direct.y(), direct.z(), t.albedo.x(), t.albedo.y(), t.albedo.z(),
                                           t.normal.x(), t.normal.y(), t.normal.z(), t.position.x(), t.position.y(),
@@ -205,6 +234,7 @@ private:
                 std::copy(values, values + 23, px);
             }
             counters.add("rays.shadow", rays.shadow);
+            if (media) media->report(counters);
         });
         return img;
     }
@@ -227,6 +257,7 @@ ParamTable table() {
         boolParam("count_weights", true,
                   "weight every A-Trous tap by its pixel's sample count (false: the plain filter, as the paper; equal counts are unaffected)"),
         intParam("batch", 0, 0, std::int64_t(1) << 32, "samples per batch (sample-to-pixel buffer size); 0: the pixel count"),
+        volumeStepParam(),
     };
     for (ParamSpec& spec : atrousParamSpecs()) specs.push_back(std::move(spec));
     return ParamTable("lighting.adaptive_indirect", std::move(specs));
@@ -238,7 +269,7 @@ const TechniqueRegistrar registrar{{
     table(),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<AdaptiveIndirect>(scene, p); },
     /*motionBlur=*/false,
-    /*renders=*/Content::Meshes,
+    /*renders=*/Content::VolumesAndMeshes,
 }};
 
 }  // namespace

@@ -20,12 +20,14 @@ IndirectEstimator::IndirectEstimator(const Scene& scene, int bounces, int rrDept
 }
 
 Vec3f IndirectEstimator::direct(const Vec3f& p, const Vec3f& n, const Vec3f& wo, std::uint32_t material,
-                                const PixelSampler& sampler, std::uint32_t dim, PathRayCounts& counts) const {
+                                const PixelSampler& sampler, std::uint32_t dim, PathRayCounts& counts,
+                                SegmentAttenuation* media) const {
     return directLight(scene_, scene_.accel(), p, n, wo, Brdf::of(scene_.materials[material]), sampler, dim, eps_,
-                       counts.shadow);
+                       counts.shadow, media);
 }
 
-Vec3f IndirectEstimator::irradiance(const GTexel& t, const PixelSampler& sampler, PathRayCounts& counts) const {
+Vec3f IndirectEstimator::irradiance(const GTexel& t, const PixelSampler& sampler, PathRayCounts& counts,
+                                    SegmentAttenuation* media) const {
     if (t.background()) return Vec3f(0, 0, 0);
     const MeshAccel& accel = scene_.accel();
     Vec3f o = t.position + t.normal * eps_, d = sampleCosine(t.normal, sampler.get(0), sampler.get(1));
@@ -34,11 +36,12 @@ Vec3f IndirectEstimator::irradiance(const GTexel& t, const PixelSampler& sampler
         ++counts.bounce;
         const SurfaceHit hit = accel.intersect(o, d, 0.0f, std::numeric_limits<float>::infinity());
         if (!hit.valid()) break;
+        if (media) throughput *= media->along(o, d, hit.t);
         const Vec3f p = o + d * hit.t, wo = -d;
         const Vec3f n = hit.normal.dot(wo) > 0 ? hit.normal : -hit.normal;
         const std::uint32_t material = accel.material(hit.geom, hit.prim);
         const std::uint32_t dim = 2 + kDimsPerVertex * std::uint32_t(bounce - 1);
-        L += throughput * direct(p, n, wo, material, sampler, dim, counts);
+        L += throughput * direct(p, n, wo, material, sampler, dim, counts, media);
         if (bounce == bounces_) break;
         if (bounce + 1 >= rrDepth_) {  // the texel is vertex 1, this hit vertex bounce + 1
             const float q = std::min(0.95f, std::max({throughput.x(), throughput.y(), throughput.z()}) / float(M_PI));

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <limits>
+#include <optional>
 
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/emitters.hpp"
@@ -38,7 +39,7 @@ struct TaskCounts {
 
 void shadeTask(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& L, const ShadeTask& task,
                const std::vector<const Vpl*>& subset, float subsetPaths, const std::vector<Brdf>& brdfs,
-               const ShadeConfig& cfg, std::vector<LightTexel>& out, TaskCounts& counts) {
+               const ShadeConfig& cfg, std::vector<LightTexel>& out, TaskCounts& counts, Counters& counters) {
     const int i = task.subBuffer % L.n(), j = task.subBuffer / L.n();
     std::vector<std::size_t> texels;
     for (int r = task.y0; r < task.y1; ++r)
@@ -50,6 +51,9 @@ void shadeTask(const Scene& scene, const std::vector<ShadeTexel>& split, const S
     std::vector<RTCRay> rays;
     std::vector<std::uint32_t> lit;
     const MeshAccel& accel = scene.accel();
+    std::optional<SegmentAttenuation> attenuation;
+    if (cfg.volumes && cfg.visibility) attenuation.emplace(*cfg.volumes);
+    SegmentAttenuation* media = attenuation ? &*attenuation : nullptr;
     for (const Vpl* vpl : subset) {
         rays.clear(), lit.clear();
         const Vec3f origin = vpl->position + vpl->normal * cfg.eps;
@@ -72,6 +76,12 @@ void shadeTask(const Scene& scene, const std::vector<ShadeTexel>& split, const S
             if (cfg.visibility && rays[r].tfar < 0) continue;  // occluded: Embree set tfar to -inf
             const VplShading& sh = shading[lit[r]];
             LightTexel& o = out[texels[lit[r]]];
+            if (media) {
+                const Vec3f T = media->along(origin, -sh.toLight, sh.distance);
+                (emitter ? o.directD : o.indirectD) += sh.d * T;
+                (emitter ? o.directS : o.indirectS) += sh.s * T;
+                continue;
+            }
             (emitter ? o.directD : o.indirectD) += sh.d;
             (emitter ? o.directS : o.indirectS) += sh.s;
         }
@@ -81,6 +91,7 @@ void shadeTask(const Scene& scene, const std::vector<ShadeTexel>& split, const S
         LightTexel& t = out[o];
         t.directD *= scale, t.directS *= scale, t.indirectD *= scale, t.indirectS *= scale;
     }
+    if (media) media->report(counters);
 }
 
 }  // namespace
@@ -98,7 +109,7 @@ std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<Sh
         const ShadeTask& task = tasks[k];
         const float paths = float((vpls.paths - std::uint32_t(task.subBuffer) + std::uint32_t(S) - 1) / std::uint32_t(S));
         TaskCounts counts;
-        shadeTask(scene, split, L, task, subsets[std::size_t(task.subBuffer)], std::max(1.0f, paths), brdfs, cfg, out, counts);
+        shadeTask(scene, split, L, task, subsets[std::size_t(task.subBuffer)], std::max(1.0f, paths), brdfs, cfg, out, counts, counters);
         counters.add("fragments.shaded", counts.fragments);
         counters.add("rays.shadow", counts.rays);
     });
@@ -106,12 +117,15 @@ std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<Sh
 }
 
 void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const Brdf& brdf, float eps, const float* u,
-                   bool useEmitters, Vec3f& d, Vec3f& s, std::int64_t& rays) {
+                   bool useEmitters, Vec3f& d, Vec3f& s, std::int64_t& rays, SegmentAttenuation* media) {
     const MeshAccel& accel = scene.accel();
     const Vec3f origin = t.position + t.normal * eps;
     auto add = [&](const Vec3f& wi, const Vec3f& radianceCos) {
         d += radianceCos * float(1 / M_PI);
         if (brdf.glossy()) s += radianceCos * brdf.lobe(wo, wi, t.normal);
+    };
+    auto through = [&](const Vec3f& o, const Vec3f& dir, float dist, const Vec3f& light) {
+        return media ? light * media->along(o, dir, dist) : light;
     };
     const Emitters& emitters = scene.emitters();
     if (useEmitters && !emitters.empty()) {
@@ -122,7 +136,8 @@ void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const B
         const float cosX = t.normal.dot(to), cosL = -e.normal.dot(to);
         if (cosX > 0 && cosL > 0) {
             ++rays;
-            if (!accel.occluded(origin, to, eps, dist * (1.0f - 1e-4f))) add(to, e.radiance * (cosX * cosL / (d2 * e.pdfArea)));
+            if (!accel.occluded(origin, to, eps, dist * (1.0f - 1e-4f)))
+                add(to, through(origin, to, dist, e.radiance * (cosX * cosL / (d2 * e.pdfArea))));
         }
     }
     for (const Light& light : scene.lights) {
@@ -130,7 +145,7 @@ void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const B
         const float cosX = t.normal.dot(li.wi);
         if (cosX <= 0) continue;
         ++rays;
-        if (!accel.occluded(origin, li.wi, eps, li.distance * (1.0f - 1e-4f))) add(li.wi, li.irradiance * cosX);
+        if (!accel.occluded(origin, li.wi, eps, li.distance * (1.0f - 1e-4f))) add(li.wi, through(origin, li.wi, li.distance, li.irradiance * cosX));
     }
 }
 
@@ -141,6 +156,9 @@ void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<
     tbb::parallel_for(0, g.height, [&](int y) {
         enableFastFloatMode();
         std::int64_t rays = 0;
+        std::optional<SegmentAttenuation> attenuation;
+        if (cfg.volumes) attenuation.emplace(*cfg.volumes);
+        SegmentAttenuation* media = attenuation ? &*attenuation : nullptr;
         for (int x = 0; x < g.width; ++x) {
             const GTexel& t = g.at(x, y);
             if (t.background()) continue;
@@ -167,14 +185,16 @@ void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<
                 const Brdf& fy = brdfs[std::size_t(ty.material)];
                 const float lu[3] = {u(3), u(4), u(5)};
                 Vec3f dY(0, 0, 0), sY(0, 0, 0);
-                directLightAt(scene, ty, -wi, fy, cfg.eps, lu, true, dY, sY, rays);
-                const Vec3f leaving = fy.kd * dY + fy.ks * sY;
+                directLightAt(scene, ty, -wi, fy, cfg.eps, lu, true, dY, sY, rays, media);
+                Vec3f leaving = fy.kd * dY + fy.ks * sY;
+                if (media) leaving *= media->along(t.position + t.normal * cfg.eps, wi, hit.t);
                 const Vec3f radiance = leaving * ((1.0f - cfg.gmax / G) * cosX / (pdf * float(samples)));
                 out.indirectD += radiance * float(1 / M_PI);
                 if (fx.glossy()) out.indirectS += radiance * fx.lobe(wo, wi, t.normal);
             }
         }
         counters.add("rays.bias_compensation", rays);
+        if (media) media->report(counters);
     });
 }
 

@@ -29,6 +29,9 @@ struct ShadeConfig {
     float gmax = 0;  // clamp of bounce VPLs' geometry term
     float eps = 1e-5f;
     Vec3f eye;
+    // Active volumes attenuate the VPL shadow rays (with visibility only),
+    // the direct light and the compensation rays; null in a mesh scene.
+    const VolumeAttenuation* volumes = nullptr;
 };
 
 // `split` is the G-buffer's shading inputs in the layout's split order (plain order for 1 x 1).
@@ -44,8 +47,9 @@ void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<
                         int samples, std::uint64_t seed, std::vector<LightTexel>& light, Counters& counters);
 
 // Direct light from a texel's point of view: one emitter sample (if any)
-// plus every point/directional light, with shadow rays; as D and S factors.
+// plus every point/directional light, with shadow rays (through the volumes
+// when `media` is given); as D and S factors.
 void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const Brdf& brdf, float eps, const float* u,
-                   bool emitters, Vec3f& d, Vec3f& s, std::int64_t& rays);
+                   bool emitters, Vec3f& d, Vec3f& s, std::int64_t& rays, SegmentAttenuation* media = nullptr);
 
 }  // namespace weft

@@ -51,7 +51,8 @@ struct PathStart {
 
 }  // namespace
 
-VplSet generateVpls(const Scene& scene, std::uint32_t paths, std::uint64_t seed) {
+VplSet generateVpls(const Scene& scene, std::uint32_t paths, std::uint64_t seed, const VolumeAttenuation& volumes,
+                    Counters& counters) {
     const MeshAccel& accel = scene.accel();
     const Emitters& emitters = scene.emitters();
     const BBoxd box = scene.worldBox();
@@ -93,6 +94,11 @@ VplSet generateVpls(const Scene& scene, std::uint32_t paths, std::uint64_t seed)
             const SurfaceHit hit = accel.intersect(start.origin, start.dir, 0.0f, std::numeric_limits<float>::infinity());
             if (!hit.valid()) return;
             const Vec3f n = hit.normal.dot(start.dir) < 0 ? hit.normal : -hit.normal;
+            if (volumes.active()) {
+                SegmentAttenuation segment(volumes);
+                start.beta *= segment.along(start.origin, start.dir, hit.t);
+                segment.report(counters);
+            }
             bounceVpl[k] = {start.origin + start.dir * hit.t, n, start.beta, -start.dir,
                             std::int32_t(accel.material(hit.geom, hit.prim)), VplKind::Bounce, k};
             hasBounce[k] = 1;

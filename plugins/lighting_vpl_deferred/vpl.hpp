@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/counters.hpp"
 #include "core/lighting/brdf.hpp"
+#include "core/lighting/volume_attenuation.hpp"
 #include "core/screen/gbuffer.hpp"
 #include "core/scene/scene.hpp"
 
@@ -31,7 +33,10 @@ struct VplSet {
     std::int64_t rays = 0;
 };
 
-VplSet generateVpls(const Scene& scene, std::uint32_t paths, std::uint64_t seed);
+// With active volumes a bounce VPL's weight carries the transmittance of
+// the segment from the light to it.
+VplSet generateVpls(const Scene& scene, std::uint32_t paths, std::uint64_t seed, const VolumeAttenuation& volumes,
+                    Counters& counters);
 
 // Lights a G-buffer texel with one VPL: adds to the diffuse factor D (to be
 // multiplied by Kd) and glossy factor S (by Ks). gmax bounds the geometry

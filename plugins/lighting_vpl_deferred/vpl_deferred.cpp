@@ -14,14 +14,25 @@
 //   DB    discontinuity buffer, B: discontinuity-aware separable Gaussian blur
 //   C     compose: albedos applied after the blur, point/directional lights
 //         (exact, every pixel), emission seen directly
+//   VT    with volumes: the transmittance from the eye to every texel
 // `interleave=1x1` skips BS/BG: plain deferred shading, every VPL at every
 // pixel. Each pixel of an n x m pattern sees the VPLs of paths k with
 // k mod (n m) equal to its sub-buffer index.
 //
 // AOVs: direct.RGB, indirect.RGB, albedo.RGB, N.XYZ, Z, discontinuity,
 // subbuffer. Counters: vpl.paths, vpl.emitter, vpl.bounce, rays.*,
-// fragments.gbuffer, fragments.shaded (texel x VPL evaluations).
+// fragments.gbuffer, fragments.shaded (texel x VPL evaluations); with
+// volumes volume.transmittance (segments marched), volume.steps,
+// volume.lookups.
+//
+// Volumes absorb and out-scatter, never scatter in
+// (core/lighting/volume_attenuation.hpp): a pixel's surface colour is
+// multiplied by the transmittance from the eye, each VPL and light shadow
+// ray (SSM; SNSM ignores volumes as it ignores occluders) and compensation
+// ray by its own, a bounce VPL by that of the path that made it; a pixel
+// that sees no surface has alpha 1 - transmittance.
 #include <cstdio>
+#include <optional>
 
 #include "core/lighting/delta_lights.hpp"
 #include "core/screen/discontinuity.hpp"
@@ -47,6 +58,7 @@ struct VplParams {
     int n, m, p, q;
     bool twoPass, visibility, filter;
     float clampFraction;
+    double volumeStep;
     int compensation, radius;
     DiscontinuityThresholds thresholds;
     GlossyModel glossy;
@@ -62,6 +74,7 @@ VplParams readParams(const ParamSet& ps) {
     v.visibility = ps.getBool("visibility");
     v.filter = ps.getBool("filter");
     v.clampFraction = float(ps.getFloat("clamp"));
+    v.volumeStep = ps.getFloat("volume_step");
     v.compensation = int(ps.getInt("bias_compensation"));
     const int kernel = int(ps.getInt("kernel"));
     v.radius = kernel > 0 ? kernel / 2 : std::max(v.n, v.m);  // auto: sigma of half a pattern period
@@ -86,17 +99,24 @@ public:
                         " given); raise 'vpls' for quality, or average frames rendered with different seeds");
         std::vector<Brdf> brdfs;
         for (const Material& m : scene.materials) brdfs.push_back(Brdf::of(m, p_.glossy));
-        const ShadeConfig cfg = shadeConfig(scene);
+        const VolumeAttenuation volumes(scene, p_.volumeStep);
+        ShadeConfig cfg = shadeConfig(scene);
+        if (volumes.active()) cfg.volumes = &volumes;
         { ScopedTimer t(ctx.timings, "build_bvh"); scene.accel(); scene.emitters(); }
 
         VplSet vpls;
-        { ScopedTimer t(ctx.timings, "VG.vpls"); vpls = generateVpls(scene, p_.paths, s.seed); }
+        { ScopedTimer t(ctx.timings, "VG.vpls"); vpls = generateVpls(scene, p_.paths, s.seed, volumes, ctx.counters); }
         ctx.counters.add("vpl.paths", vpls.paths), ctx.counters.add("vpl.emitter", vpls.emitterCount);
         ctx.counters.add("vpl.bounce", vpls.bounceCount), ctx.counters.add("rays.vpl", vpls.rays);
 
         GBuffer g;
         { ScopedTimer t(ctx.timings, "BC.gbuffer"); g = createGBuffer(scene, s, ctx.counters); }
         ctx.counters.add("fragments.gbuffer", std::int64_t(g.texels.size()));
+        std::vector<Vec3f> eyeT;
+        if (volumes.active()) {
+            ScopedTimer t(ctx.timings, "VT.transmittance");
+            eyeT = cameraTransmittance(scene, g, volumes, ctx.counters);
+        }
 
         const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
         const std::vector<ShadeTexel> split = splitPass(g, layout, ctx);
@@ -114,7 +134,7 @@ public:
         { ScopedTimer t(ctx.timings, "DB.discontinuity"); disc = discontinuityBuffer(g, p_.thresholds); }
         if (p_.filter && layout.count() > 1) blurPass(light, disc, brdfs, layout, ctx);
         ScopedTimer t(ctx.timings, "C.compose");
-        return compose(scene, g, light, disc, layout, brdfs, cfg, ctx.counters);
+        return compose(scene, g, light, disc, eyeT, layout, brdfs, cfg, ctx.counters);
     }
 
 private:
@@ -161,28 +181,35 @@ private:
     }
 
     Image compose(const Scene& scene, const GBuffer& g, const std::vector<LightTexel>& light,
-                  const std::vector<std::uint8_t>& disc, const SubBufferLayout& layout, const std::vector<Brdf>& brdfs,
-                  const ShadeConfig& cfg, Counters& counters) const {
+                  const std::vector<std::uint8_t>& disc, const std::vector<Vec3f>& eyeT, const SubBufferLayout& layout,
+                  const std::vector<Brdf>& brdfs, const ShadeConfig& cfg, Counters& counters) const {
         Image img(g.width, g.height, {"R", "G", "B", "A", "direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G",
                                       "indirect.B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z",
                                       "discontinuity", "subbuffer"});
         tbb::parallel_for(0, g.height, [&](int y) {
             enableFastFloatMode();
             std::int64_t rays = 0;
+            std::optional<SegmentAttenuation> attenuation;
+            if (cfg.volumes) attenuation.emplace(*cfg.volumes);
+            SegmentAttenuation* media = attenuation ? &*attenuation : nullptr;
             for (int x = 0; x < g.width; ++x) {
                 const GTexel& t = g.at(x, y);
                 float* px = img.pixel(x, y);
                 const std::size_t i = std::size_t(y) * g.width + x;
                 px[17] = float(disc[i]), px[18] = float(layout.index(x, y));
-                if (t.background()) continue;
+                if (t.background()) {
+                    if (media) px[3] = backgroundAlpha(eyeT[i]);
+                    continue;
+                }
                 const Brdf& f = brdfs[std::size_t(t.material)];
                 const LightTexel& l = light[i];
                 Vec3f dd(0, 0, 0), ds(0, 0, 0);
-                if (!scene.lights.empty()) directLightAt(scene, t, (cfg.eye - t.position).unitSafe(), f, cfg.eps, nullptr, false, dd, ds, rays);
+                if (!scene.lights.empty()) directLightAt(scene, t, (cfg.eye - t.position).unitSafe(), f, cfg.eps, nullptr, false, dd, ds, rays, media);
                 Vec3f direct = f.kd * (l.directD + dd) + f.ks * (l.directS + ds);
                 const Material& mat = scene.materials[std::size_t(t.material)];
                 if (t.front && mat.emissive()) direct += mat.emission;
-                const Vec3f indirect = f.kd * l.indirectD + f.ks * l.indirectS;
+                Vec3f indirect = f.kd * l.indirectD + f.ks * l.indirectS;
+                if (media) direct *= eyeT[i], indirect *= eyeT[i];
                 const Vec3f rgb = direct + indirect;
                 const float values[17] = {rgb.x(), rgb.y(), rgb.z(), 1.0f, direct.x(), direct.y(), direct.z(),
                                           indirect.x(), indirect.y(), indirect.z(), t.albedo.x(), t.albedo.y(), t.albedo.z(),
@@ -190,6 +217,7 @@ private:
                 std::copy(values, values + 17, px);
             }
             counters.add("rays.shadow.delta", rays);
+            if (media) media->report(counters);
         });
         return img;
     }
@@ -214,10 +242,11 @@ const TechniqueRegistrar registrar{{
                 intParam("kernel", 0, 0, 63, "Gaussian kernel size in pixels (sigma = radius / 2); 0: 2 max(n, m) + 1, wide enough to hide the pattern"),
                 floatParam("normal_threshold", 25, 0, 180, "discontinuity where neighbours' normals differ by more than this (degrees)"),
                 floatParam("position_threshold", 0.05, 0, 1e6, "discontinuity where neighbours are farther apart than this times their depth"),
-                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)")}),
+                enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)"),
+                volumeStepParam()}),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<VplDeferred>(scene, p); },
     /*motionBlur=*/false,
-    /*renders=*/Content::Meshes,
+    /*renders=*/Content::VolumesAndMeshes,
 }};
 
 }  // namespace

@@ -94,8 +94,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"PreviewOverwritesStats", "builtin:sphere --res 8x8 --preview $D/p.png --stats $D/p.png", "--stats names the same file as --preview"},
         BadInputCase{"MeshesDroppedByVolumeTechnique", "$D/mixed.json --technique volume.adaptive3d",
                      "volume.adaptive3d renders volumes, and the scene '"},
-        BadInputCase{"VolumesDroppedByMeshTechnique", "$D/mixed.json --technique lighting.vpl_deferred",
-                     "also has 1 volume it would drop"},
         BadInputCase{"EmptyFrames", "builtin:sphere --res 8x8 --frames ''", "--frames is empty"},
         BadInputCase{"HugeThreadCount", "builtin:sphere --res 8x8 --threads 2147483647", "--threads 2147483647 is outside [0, 4096]"},
         BadInputCase{"BadSetFailsOnceForAllFrames", "builtin:sphere --technique volume.raymarch --res 8x8 --frames 1-1000000 --set stpe=1",

@@ -14,6 +14,18 @@ void writeProceduralVdb(const std::filesystem::path& path, const std::string& ki
     file.close();
 }
 
+void writeSlabVdb(const std::filesystem::path& path, int nxy, int nz, double voxel) {
+    initVdb();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+    grid->fill(openvdb::CoordBBox(openvdb::Coord(-nxy / 2, -nxy / 2, 0), openvdb::Coord(nxy / 2 - 1, nxy / 2 - 1, nz - 1)), 1.0f, true);
+    grid->tree().voxelizeActiveTiles();
+    openvdb::io::File file(path.string());
+    file.write({grid});
+    file.close();
+}
+
 void writeEmptyVdb(const std::filesystem::path& path) {
     auto grid = openvdb::FloatGrid::create(0.0f);
     grid->setName("density");

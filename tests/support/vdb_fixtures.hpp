@@ -9,6 +9,12 @@ namespace weft::test {
 void writeProceduralVdb(const std::filesystem::path& path, const std::string& kind, int res,
                         const std::string& gridName = "density");
 
+// A slab of constant density 1: voxels x, y in [-nxy/2, nxy/2) and z in
+// [0, nz), each `voxel` world units. Sampled trilinearly its density ramps
+// to 0 over one voxel past each face, so any line across it along z (away
+// from the x and y faces) integrates to exactly nz voxels of density.
+void writeSlabVdb(const std::filesystem::path& path, int nxy, int nz, double voxel);
+
 // A density grid with no active voxel (the first frame of a simulation cache).
 void writeEmptyVdb(const std::filesystem::path& path);
 
