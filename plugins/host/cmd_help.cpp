@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/base/error.hpp"
+#include "core/base/render_options.hpp"
 
 #include "plugins/host/command.hpp"
 #include "plugins/technique.hpp"
@@ -17,6 +18,7 @@ namespace weft {
 namespace {
 
 void printList() {
+    std::printf("weft help options: the render options (command line, batch jobs, scene render block)\n");
     std::printf("techniques (weft help NAME for parameters):\n");
     for (const TechniqueInfo* t : techniques().all()) std::printf("  %-28s %s\n", t->name.c_str(), t->summary.c_str());
 }
@@ -38,7 +40,16 @@ struct HelpOptions {
     bool markdown = false;
 };
 
+// `weft help options`: the one table every way of asking for a render reads.
+void printRenderOptions(bool markdown) {
+    if (markdown) return void(std::printf("%s", renderOptionsMarkdown().c_str()));
+    std::printf("render options: name (JSON key), type, default, allowed, meaning; then where it may be given\n"
+                "(precedence: command line or batch job > scene \"render\" block > default):\n%s",
+                renderOptionsHelp().c_str());
+}
+
 void printHelp(const HelpOptions& o) {
+    if (o.name == "options") return printRenderOptions(o.markdown);
     if (o.name.empty()) {
         if (o.markdown) throw Error("weft help --markdown needs a technique name (weft help lists them)");
         return printList();
@@ -48,9 +59,9 @@ void printHelp(const HelpOptions& o) {
 }
 
 const CommandRegistrar registrar{{"help", 90, [](CLI::App& app) {
-    auto* cmd = app.add_subcommand("help", "describe a technique and its parameters");
+    auto* cmd = app.add_subcommand("help", "describe a technique and its parameters, or the render options (weft help options)");
     auto o = std::make_shared<HelpOptions>();
-    cmd->add_option("name", o->name, "technique name (omit to list them)");
+    cmd->add_option("name", o->name, "technique name, or options (omit to list them)");
     cmd->add_flag("--markdown", o->markdown, "print the parameter section of docs/techniques/NAME.md");
     cmd->callback([o] { printHelp(*o); });
 }}};
