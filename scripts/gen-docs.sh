@@ -6,7 +6,8 @@
 # exactly what `weft help NAME --markdown` prints; everything outside them is
 # written by hand. A registered technique without a page gets a new page with
 # its title and the generated part; write its description above the markers.
-# docs/usage.md holds `weft help options --markdown` the same way.
+# docs/usage.md holds `weft help options --markdown` and `weft help counters
+# --markdown` the same way.
 # tests/cli/docs_test.cpp fails when a page is out of date.
 # Usage: scripts/gen-docs.sh [path/to/weft]   (default build/bin/weft)
 set -euo pipefail
@@ -46,8 +47,8 @@ regen() {
   fi
 }
 for name in $names; do regen "$dir/$name.md" "$name"; done
-# The render option table in docs/usage.md.
-for name in options; do regen docs/usage.md "$name"; done
+# The render option table and the counter list in docs/usage.md.
+for name in options counters; do regen docs/usage.md "$name"; done
 for page in "$dir"/*.md; do
   name=$(basename "$page" .md)
   grep -qxF "$name" <<< "$names" || echo "gen-docs: $page: no technique named $name is registered" >&2

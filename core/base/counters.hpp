@@ -60,8 +60,6 @@ class Counters {
 public:
     void add(const Counter& counter, std::int64_t n) { addNamed(counter.name(), n); }
     void add(const IndexedCounter& counter, int index, std::int64_t n) { addNamed(counter.name(index), n); }
-    // By name, until every call site has its handle.
-    void add(std::string_view name, std::int64_t n) { addNamed(name, n); }
     // Sum over all threads, by name (sorted).
     CounterMap merged() const;
     std::int64_t total(std::string_view name) const;

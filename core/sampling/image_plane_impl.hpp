@@ -8,6 +8,8 @@
 
 namespace weft {
 
+inline const Counter kImageSamples{"image.samples", "point evaluations of the image function"};
+
 inline CameraSample ImagePlane::sample(int px, int py, int k, const PixelPatterns& patterns) const {
     CameraSample s;
     s.px = px, s.py = py, s.index = std::uint32_t(k);
@@ -100,7 +102,7 @@ std::vector<Rgba> ImagePlane::cornerGrid(RenderContext& ctx, MakeShader& make) c
             corners[std::size_t(y) * W1 + x] = shade(s);
         }
         shade.flush(ctx.counters);
-        ctx.counters.add("image.samples", W1);
+        ctx.counters.add(kImageSamples, W1);
     });
     return corners;
 }
@@ -145,7 +147,7 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
         if (!adaptive && !wide) {
             boxRow(shade, y, image);
             shade.flush(ctx.counters);
-            ctx.counters.add("image.samples", std::int64_t(s.width) * s.spp);
+            ctx.counters.add(kImageSamples, std::int64_t(s.width) * s.spp);
             return;
         }
         for (int x = 0; x < s.width; ++x) {
@@ -168,7 +170,7 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
             evaluations += opt_.adaptive == AdaptiveMode::Supersample ? used - 4 : used;
         }
         shade.flush(ctx.counters);
-        ctx.counters.add("image.samples", evaluations);
+        ctx.counters.add(kImageSamples, evaluations);
     });
     return wide ? gather(rows) : image;
 }

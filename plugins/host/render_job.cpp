@@ -21,6 +21,8 @@ namespace weft {
 
 namespace {
 
+const Counter kImageNonfinite{"image.nonfinite", "NaN/Inf values written as 0 (a technique bug when not 0)"};
+
 // Two outputs naming one file would leave only the last written: the render
 // replaced by its statistics, say.
 void checkDistinctOutputs(const RenderRequest& r) {
@@ -199,7 +201,7 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         out.image = technique->render(scene, ctx);
     }
     if (std::int64_t bad = scrubNonFinite(out.image)) {
-        ctx.counters.add("image.nonfinite", bad);
+        ctx.counters.add(kImageNonfinite, bad);
         std::fprintf(stderr, "weft: warning: %s produced %lld NaN/Inf values (written as 0)\n", name.c_str(), (long long)bad);
     }
     out.window = ImageWindow{0, band.begin, out.image.width(), out.image.height()};

@@ -56,6 +56,10 @@ namespace weft {
 
 namespace {
 
+const Counter kRaysBounce{"rays.bounce", "path continuation rays after a bounce"};
+const Counter kVolumeLookups{"volume.lookups", "density reads of free flights and shadow rays"};
+const Counter kVolumeCollisions{"volume.collisions", "tentative collisions of free flights and shadow rays"};
+
 struct PathCounts {
     std::int64_t bounce = 0, shadow = 0;
 };
@@ -137,12 +141,12 @@ public:
                 const float inv = 1.0f / float(s.spp);
                 px[0] = sum.x() * inv, px[1] = sum.y() * inv, px[2] = sum.z() * inv, px[3] = row ? alpha * inv : 1.0f;
             }
-            ctx.counters.add("rays.camera", std::int64_t(s.width) * s.spp);
-            ctx.counters.add("rays.bounce", counts.bounce);
-            ctx.counters.add("rays.shadow", counts.shadow + (row ? row->shadow.traced : 0));
+            ctx.counters.add(kRaysCamera, std::int64_t(s.width) * s.spp);
+            ctx.counters.add(kRaysBounce, counts.bounce);
+            ctx.counters.add(kRaysShadow, counts.shadow + (row ? row->shadow.traced : 0));
             if (!row) return;
-            ctx.counters.add("volume.lookups", row->flight.lookups + row->shadow.lookups());
-            ctx.counters.add("volume.collisions", row->collisions + row->shadow.collisions);
+            ctx.counters.add(kVolumeLookups, row->flight.lookups + row->shadow.lookups());
+            ctx.counters.add(kVolumeCollisions, row->collisions + row->shadow.collisions);
         });
         return image;
     }

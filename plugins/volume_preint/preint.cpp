@@ -134,14 +134,14 @@ public:
                 px[0] = acc.r, px[1] = acc.g, px[2] = acc.b, px[3] = acc.a;
                 if (hit.valid()) shadeBehind(scene, *accel, worldRay, hit, PixelSampler(s.seed, x, y, 0, 1), eps, px, surfaces);
             }
-            ctx.counters.add("volume.samples", samples);
-            ctx.counters.add("composite.ops", composites);
-            ctx.counters.add("rays.camera", s.width);
+            ctx.counters.add(kVolumeSamples, samples);
+            ctx.counters.add(kCompositeOps, composites);
+            ctx.counters.add(kRaysCamera, s.width);
             if (!accel) return;  // mesh-free renders keep their counters as they were
-            ctx.counters.add("rays.surface", surfaces.surface);
-            ctx.counters.add("rays.shadow", surfaces.shadow);
+            ctx.counters.add(kRaysSurface, surfaces.surface);
+            ctx.counters.add(kRaysShadow, surfaces.shadow);
         });
-        ctx.counters.add("slices", slices.imax + 1);
+        ctx.counters.add(kSlices, slices.imax + 1);
         return image;
     }
 

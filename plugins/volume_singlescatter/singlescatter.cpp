@@ -41,6 +41,9 @@ namespace weft {
 
 namespace {
 
+const Counter kShadowSamples{"shadow.samples", "density lookups for shadows, the light cache included"};
+const Counter kMeshShadowRays{"mesh.shadow_rays", "shadow rays traced against the scene's meshes"};
+
 class SingleScatter final : public Technique {
 public:
     SingleScatter(const Scene& scene, const ParamSet& p) : paramSet_(p) { requireSurfaceLights(scene, "volume.singlescatter"); }
@@ -61,10 +64,10 @@ public:
             auto row = tracer.row();
             for (int x = 0; x < s.width; ++x) shadePixel(tracer, camera, s, x, y, *row, image.pixel(x, y));
             const ScatterTracer::Counts& n = ScatterTracer::counts(*row);
-            ctx.counters.add("rays.camera", std::int64_t(s.width) * s.spp);
-            ctx.counters.add("volume.samples", n.samples);
-            ctx.counters.add("shadow.samples", n.shadowSamples);
-            if (accel) ctx.counters.add("mesh.shadow_rays", n.meshShadowRays);
+            ctx.counters.add(kRaysCamera, std::int64_t(s.width) * s.spp);
+            ctx.counters.add(kVolumeSamples, n.samples);
+            ctx.counters.add(kShadowSamples, n.shadowSamples);
+            if (accel) ctx.counters.add(kMeshShadowRays, n.meshShadowRays);
         });
         return image;
     }

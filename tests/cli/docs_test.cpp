@@ -96,10 +96,10 @@ TEST(Docs, HelpMarkdownNeedsATechniqueName) {
     EXPECT_NE(r.output.find("needs a technique name"), std::string::npos) << r.output;
 }
 
-// docs/usage.md holds the render option table the same way.
+// docs/usage.md holds the render option table and the counter list the same way.
 TEST(Docs, UsageHoldsWhatWeftHelpRenderPrints) {
     const fs::path page = fs::path(WEFT_SOURCE_DIR) / "docs" / "usage.md";
-    for (const std::string name : {"options"}) {
+    for (const std::string name : {"options", "counters"}) {
         const CommandResult help = runWeft("help " + name + " --markdown", kNoPlugins);
         ASSERT_EQ(help.status, 0) << help.output;
         std::string part;
