@@ -6,6 +6,8 @@
 # exactly what `weft help NAME --markdown` prints; everything outside them is
 # written by hand. A registered technique without a page gets a new page with
 # its title and the generated part; write its description above the markers.
+# docs/usage.md holds `weft help options --markdown` and `weft help counters
+# --markdown` the same way.
 # tests/cli/docs_test.cpp fails when a page is out of date.
 # Usage: scripts/gen-docs.sh [path/to/weft]   (default build/bin/weft)
 set -euo pipefail
@@ -18,10 +20,11 @@ mkdir -p "$dir"
 generated=$(mktemp)
 trap 'rm -f "$generated" "$generated.page"' EXIT
 names=$(env -u WEFT_PLUGIN_PATH "$weft" --list-plugins | awk '{print $1}')
-for name in $names; do
-  page=$dir/$name.md
-  begin="<!-- BEGIN weft help $name --markdown -->"
-  end="<!-- END weft help $name --markdown -->"
+# regen PAGE NAME: the part of PAGE between NAME's markers, from `weft help NAME --markdown`.
+regen() {
+  local page=$1 name=$2
+  local begin="<!-- BEGIN weft help $name --markdown -->"
+  local end="<!-- END weft help $name --markdown -->"
   env -u WEFT_PLUGIN_PATH "$weft" help "$name" --markdown > "$generated"
   if [ ! -f "$page" ]; then
     printf '# %s\n\n%s\n%s\n' "$name" "$begin" "$end" > "$page"
@@ -42,7 +45,10 @@ for name in $names; do
     mv "$generated.page" "$page"
     echo "gen-docs: updated $page"
   fi
-done
+}
+for name in $names; do regen "$dir/$name.md" "$name"; done
+# The render option table and the counter list in docs/usage.md.
+for name in options counters; do regen docs/usage.md "$name"; done
 for page in "$dir"/*.md; do
   name=$(basename "$page" .md)
   grep -qxF "$name" <<< "$names" || echo "gen-docs: $page: no technique named $name is registered" >&2

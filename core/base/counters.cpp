@@ -5,7 +5,44 @@
 
 namespace weft {
 
-void Counters::add(std::string_view name, std::int64_t n) {
+namespace {
+
+// Filled during static initialisation, in no fixed order: a function-local
+// static exists before the first Counter registers.
+std::vector<std::pair<std::string, std::string>>& registry() {
+    static std::vector<std::pair<std::string, std::string>> all;
+    return all;
+}
+
+}  // namespace
+
+Counter::Counter(const char* name, const char* doc) : name_(name), doc_(doc) { registry().emplace_back(name, doc); }
+
+IndexedCounter::IndexedCounter(const char* prefix, const char* doc) : prefix_(prefix), doc_(doc) {
+    registry().emplace_back(std::string(prefix) + "<N>", doc);
+}
+
+std::vector<std::pair<std::string, std::string>> declaredCounters() {
+    auto all = registry();
+    std::sort(all.begin(), all.end());
+    return all;
+}
+
+std::string declaredCountersMarkdown() {
+    std::string out = "| counter | meaning |\n|---|---|\n";
+    for (const auto& [name, doc] : declaredCounters()) out += "| `" + name + "` | " + doc + " |\n";
+    return out;
+}
+
+const Counter kRaysCamera{"rays.camera", "camera rays (primary rays) traced, one per pixel sample or per column for slicing techniques"};
+const Counter kRaysShadow{"rays.shadow", "shadow rays traced towards lights or VPLs"};
+const Counter kRaysSurface{"rays.surface", "rays traced against the scene's meshes to find the surface behind a volume"};
+const Counter kVolumeSamples{"volume.samples", "volume lookups (trilinear samples of the grids)"};
+const Counter kVolumeLookups{"volume.lookups", "density reads of free flights, shadow rays and transmittance marches"};
+const Counter kSlices{"slices", "slices (sampling planes) the volume was cut into"};
+const Counter kCompositeOps{"composite.ops", "compositing operations (the paper's COMPOSITE)"};
+
+void Counters::addNamed(std::string_view name, std::int64_t n) {
     CounterMap& local = perThread_.local();
     auto it = local.find(name);
     if (it == local.end()) local.emplace(std::string(name), n);

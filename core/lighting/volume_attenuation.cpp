@@ -14,6 +14,13 @@ namespace weft {
 
 namespace {
 
+const Counter kVolumeTransmittance{"volume.transmittance", "segments whose volume transmittance was marched (camera, shadow and VPL rays)"};
+const Counter kVolumeSteps{"volume.steps", "midpoint steps of those transmittance marches"};
+
+}  // namespace
+
+namespace {
+
 bool attenuates(const Volume& v) {
     const Vec3d sigma = v.medium.absorb + v.medium.scatter;
     return !v.empty() && std::max({sigma[0], sigma[1], sigma[2]}) > 0;
@@ -39,9 +46,9 @@ Vec3f attenuated(SegmentAttenuation& media, const Vec3f& light, const Vec3f& ori
 }
 
 void SegmentAttenuation::report(Counters& counters) const {
-    counters.add("volume.transmittance", segments_);
-    counters.add("volume.steps", steps_);
-    counters.add("volume.lookups", ray_.lookups);
+    counters.add(kVolumeTransmittance, segments_);
+    counters.add(kVolumeSteps, steps_);
+    counters.add(kVolumeLookups, ray_.lookups);
 }
 
 std::vector<Vec3f> cameraTransmittance(const Scene& scene, const GBuffer& g, const VolumeAttenuation& volumes,

@@ -10,6 +10,8 @@
 
 namespace weft {
 
+inline const Counter kImageSamples{"image.samples", "point evaluations of the image function"};
+
 // The one pixel loop of weft: every row of the settings' row band (all
 // rows unless a tile is being rendered) in parallel, progress per row.
 // Each pixel's result depends only on its own coordinates, so images are
@@ -131,7 +133,7 @@ std::vector<Rgba> ImagePlane::cornerGrid(RenderContext& ctx, MakeShader& make) c
             corners[std::size_t(y) * W1 + x] = shade(s).toFloat();
         }
         shade.flush(ctx.counters);
-        ctx.counters.add("image.samples", W1);
+        ctx.counters.add(kImageSamples, W1);
     });
     return corners;
 }
@@ -177,7 +179,7 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
         if (!adaptive && !wide) {
             boxRow(shade, y, image);
             shade.flush(ctx.counters);
-            ctx.counters.add("image.samples", std::int64_t(s.width) * s.spp);
+            ctx.counters.add(kImageSamples, std::int64_t(s.width) * s.spp);
             return;
         }
         for (int x = 0; x < s.width; ++x) {
@@ -200,7 +202,7 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
             evaluations += opt_.adaptive == AdaptiveMode::Supersample ? used - 4 : used;
         }
         shade.flush(ctx.counters);
-        ctx.counters.add("image.samples", evaluations);
+        ctx.counters.add(kImageSamples, evaluations);
     });
     return wide ? gather(rows) : image;
 }

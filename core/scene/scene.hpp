@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/render_options.hpp"
 #include "core/scene/camera.hpp"
 #include "core/mesh/mesh.hpp"
 #include "core/volume/volume.hpp"
@@ -25,12 +26,10 @@ struct Light {
     double intensity = 1.0;
 };
 
-struct SceneRenderSettings {
-    std::optional<std::string> technique;
-    std::map<std::string, std::string> params;  // key -> value text
-    std::optional<int> width, height, spp;
-    std::optional<std::uint64_t> seed;
-};
+// A scene file's "render" block, read through the render option table
+// (core/base/render_options.hpp): only technique, resolution, spp, seed and
+// set/params may be set there; the command line's values win over them.
+using SceneRenderSettings = RenderRequest;
 
 class MeshAccel;
 class Emitters;

@@ -10,6 +10,7 @@
 #include "core/base/frames.hpp"
 #include "core/base/json_doc.hpp"
 #include "core/base/params.hpp"
+#include "core/base/render_options.hpp"
 #include "core/scene/placement.hpp"
 #include "core/scene/scene.hpp"
 
@@ -252,34 +253,19 @@ Light readLight(const ObjectReader& r) {
     return light;
 }
 
-std::string paramText(const ObjectReader& r, const std::string& key) {
-    const json& v = r.value()[key];
-    if (v.is_string()) return v.get<std::string>();
-    if (v.is_number() || v.is_boolean()) return v.dump();
-    r.fail(key, "render.params." + key + " must be a string, number or boolean");
+std::set<std::string> keysOf(const json& object) {
+    std::set<std::string> keys;
+    if (object.is_object())
+        for (const auto& item : object.items()) keys.insert(item.key());
+    return keys;
 }
 
+// The render block goes through the same table as the command line and batch
+// jobs; errors point at the key's position.
 void readRender(const ObjectReader& r, SceneRenderSettings& out) {
-    if (r.has("technique")) out.technique = r.string("technique", "");
-    if (r.has("resolution")) {
-        const json& v = r.value()["resolution"];
-        if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
-            v[0].get<long long>() < 1 || v[1].get<long long>() < 1 || v[0].get<long long>() > 65536 || v[1].get<long long>() > 65536)
-            r.fail("resolution", "render.resolution must be [width, height], integers in [1, 65536]");
-        out.width = v[0].get<int>(), out.height = v[1].get<int>();
-    }
-    if (r.has("spp")) out.spp = int(r.number("spp", 1, 1, 1 << 20));
-    if (r.has("seed")) out.seed = std::uint64_t(r.number("seed", 0, 0, 9007199254740992.0));
-    if (r.has("params")) {
-        const json& params = r.value()["params"];
-        if (!params.is_object()) r.fail("params", "render.params must be an object");
-        ObjectReader pr(r.doc(), r.child("params"), "render.params", [&] {
-            std::set<std::string> keys;
-            for (const auto& item : params.items()) keys.insert(item.key());
-            return keys;
-        }());
-        for (const auto& item : params.items()) out.params[item.key()] = paramText(pr, item.key());
-    }
+    readRenderOptions(out, r.value(), kInScene, [&](const std::string& key, const std::string& msg) {
+        r.fail(key, msg);
+    });
 }
 
 template <class Fn>
@@ -307,12 +293,16 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
         forEachInArray(doc, "/lights", "lights", [&](const std::string& p) {
             scene.lights.push_back(readLight(ObjectReader(doc, p, "light", {"type", "direction", "position", "color", "intensity"})));
         });
-    if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", {"technique", "resolution", "spp", "seed", "params"}), scene.render);
+    if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", keysOf(doc.root().at("render"))), scene.render);
     if (top.has("camera")) {
         readSceneCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov", "keys", "shutter"}), frame, scene);
     }
     else if (!scene.volumes.empty() || !scene.meshes.empty()) {
-        const double sceneAspect = scene.render.width ? double(*scene.render.width) / *scene.render.height : 1.0;
+        double sceneAspect = 1.0;
+        if (scene.render.resolution) {
+            const auto [w, h] = parseResolution(*scene.render.resolution);
+            sceneAspect = double(w) / h;
+        }
         scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect.value_or(sceneAspect));
     }
     return scene;
@@ -341,7 +331,7 @@ Scene loadAnalyticBuiltin(const std::string& name) {
     Scene scene;
     scene.source = "builtin:" + name;
     scene.render.technique = "analytic.2d";
-    scene.render.params["scene"] = name;
+    scene.render.sets.push_back("scene=" + name);
     return scene;
 }
 

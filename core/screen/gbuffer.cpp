@@ -87,7 +87,7 @@ GBuffer createGBuffer(const Scene& scene, const RenderSettings& s, Counters& cou
                           g.at(x0 + i % kTile, ty * kTile + i / kTile));
             }
         }
-        counters.add("rays.camera", std::int64_t(s.width) * std::min(kTile, s.height - ty * kTile));
+        counters.add(kRaysCamera, std::int64_t(s.width) * std::min(kTile, s.height - ty * kTile));
     });
     return g;
 }

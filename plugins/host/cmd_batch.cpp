@@ -7,13 +7,14 @@
 //              "technique": "volume.raymarch", "set": {"step": 0.5}, "res": "320x240",
 //              "spp": 4, "seed": 1, "preview": "out/smoke.#.png", "stats": "out/smoke.#.json",
 //              "tile": "1/2", "grid": "density", "threads": 0}]}
-// Paths are relative to the current folder, like on the command line.
+// The keys are those of `weft help options` (res for resolution, set or params);
+// paths are relative to the current folder, like on the command line.
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "core/base/error.hpp"
 #include "core/base/frames.hpp"
+#include "core/base/render_options.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/render_job.hpp"
 #include "plugins/technique.hpp"
@@ -24,41 +25,16 @@ namespace {
 
 using nlohmann::json;
 
-const std::set<std::string> kJobKeys = {"input", "output", "frames", "technique", "set", "res", "spp",
-                                        "seed", "preview", "stats", "tile", "grid", "threads"};
-
-std::string text(const json& job, const std::string& key, const std::string& where) {
-    if (!job.contains(key)) return "";
-    if (!job[key].is_string()) throw Error(where + ": '" + key + "' must be a string");
-    return job[key].get<std::string>();
-}
-
-std::string scalarText(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
-
+// A job's keys are the render options' names (core/base/render_options.hpp),
+// read and checked by the same table as the command line; then the checks a
+// command line gets before any render (technique, --set keys, memory).
 RenderRequest requestOf(const json& job, const std::string& where) {
     if (!job.is_object()) throw Error(where + ": a job must be an object");
-    for (const auto& item : job.items())
-        if (!kJobKeys.count(item.key())) {
-            std::string valid;
-            for (const auto& k : kJobKeys) valid += (valid.empty() ? "" : ", ") + k;
-            throw Error(where + ": unknown key '" + item.key() + "' (valid: " + valid + ")");
-        }
     RenderRequest r;
-    r.input = text(job, "input", where), r.output = text(job, "output", where);
+    readRenderOptions(r, job, kInBatchJob, [&](const std::string&, const std::string& msg) { throw Error(where + ": " + msg); });
     if (r.input.empty() || r.output.empty()) throw Error(where + ": 'input' and 'output' are required");
-    r.preview = text(job, "preview", where), r.stats = text(job, "stats", where);
-    r.tile = text(job, "tile", where), r.grid = text(job, "grid", where);
-    if (job.contains("technique")) r.technique = techniques().get(text(job, "technique", where)).name;
-    if (job.contains("res")) r.resolution = text(job, "res", where);
-    if (job.contains("spp")) r.spp = job["spp"].get<int>();
-    if (job.contains("seed")) r.seed = job["seed"].get<std::uint64_t>();
-    if (job.contains("threads")) r.threads = job["threads"].get<int>();
-    if (job.contains("set")) {
-        if (!job["set"].is_object()) throw Error(where + ": 'set' must be an object of key: value");
-        for (const auto& item : job["set"].items()) r.sets.push_back(item.key() + "=" + scalarText(item.value()));
-    }
-    if (!r.tile.empty()) parseTileSpec(r.tile);
-    if (r.resolution) parseResolution(*r.resolution);
+    if (r.technique) r.technique = techniques().get(*r.technique).name;
+    validateRequest(r);
     return r;
 }
 
@@ -79,8 +55,7 @@ std::vector<RenderRequest> loadBatch(const std::string& path) {
         try {
             const json& job = doc["jobs"][i];
             const RenderRequest r = requestOf(job, where);
-            const std::string frames = text(job, "frames", where);
-            for (RenderRequest& q : frames.empty() ? std::vector<RenderRequest>{r} : requestsForFrames(r, parseFrameRange(frames)))
+            for (RenderRequest& q : !r.frames ? std::vector<RenderRequest>{r} : requestsForFrames(r, parseFrameRange(*r.frames)))
                 all.push_back(std::move(q));
         } catch (const json::exception& e) {
             throw Error(where + ": " + e.what());

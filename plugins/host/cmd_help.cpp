@@ -7,7 +7,9 @@
 #include <memory>
 #include <string>
 
+#include "core/base/counters.hpp"
 #include "core/base/error.hpp"
+#include "core/base/render_options.hpp"
 
 #include "plugins/host/command.hpp"
 #include "plugins/technique.hpp"
@@ -17,6 +19,8 @@ namespace weft {
 namespace {
 
 void printList() {
+    std::printf("weft help options: the render options (command line, batch jobs, scene render block)\n");
+    std::printf("weft help counters: the counters a render records\n");
     std::printf("techniques (weft help NAME for parameters):\n");
     for (const TechniqueInfo* t : techniques().all()) std::printf("  %-28s %s\n", t->name.c_str(), t->summary.c_str());
 }
@@ -38,7 +42,24 @@ struct HelpOptions {
     bool markdown = false;
 };
 
+// `weft help options`: the one table every way of asking for a render reads.
+void printRenderOptions(bool markdown) {
+    if (markdown) return void(std::printf("%s", renderOptionsMarkdown().c_str()));
+    std::printf("render options: name (JSON key), type, default, allowed, meaning; then where it may be given\n"
+                "(precedence: command line or batch job > scene \"render\" block > default):\n%s",
+                renderOptionsHelp().c_str());
+}
+
+// `weft help counters`: every declared counter (core/base/counters.hpp).
+void printCounters(bool markdown) {
+    if (markdown) return void(std::printf("%s", declaredCountersMarkdown().c_str()));
+    std::printf("counters (stats JSON \"counters\", EXR weft:counter:NAME):\n");
+    for (const auto& [name, doc] : declaredCounters()) std::printf("  %-28s %s\n", name.c_str(), doc.c_str());
+}
+
 void printHelp(const HelpOptions& o) {
+    if (o.name == "options") return printRenderOptions(o.markdown);
+    if (o.name == "counters") return printCounters(o.markdown);
     if (o.name.empty()) {
         if (o.markdown) throw Error("weft help --markdown needs a technique name (weft help lists them)");
         return printList();
@@ -48,9 +69,9 @@ void printHelp(const HelpOptions& o) {
 }
 
 const CommandRegistrar registrar{{"help", 90, [](CLI::App& app) {
-    auto* cmd = app.add_subcommand("help", "describe a technique and its parameters");
+    auto* cmd = app.add_subcommand("help", "describe a technique and its parameters, or the render options (weft help options)");
     auto o = std::make_shared<HelpOptions>();
-    cmd->add_option("name", o->name, "technique name (omit to list them)");
+    cmd->add_option("name", o->name, "technique name, options or counters (omit to list them)");
     cmd->add_flag("--markdown", o->markdown, "print the parameter section of docs/techniques/NAME.md");
     cmd->callback([o] { printHelp(*o); });
 }}};

@@ -19,16 +19,9 @@
 
 namespace weft {
 
-std::pair<int, int> parseResolution(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
-        w > 65536 || h > 65536)
-        throw Error("bad resolution '" + text + "': expected WxH with W and H in [1, 65536], e.g. 512x512");
-    return {w, h};
-}
-
 namespace {
+
+const Counter kImageNonfinite{"image.nonfinite", "NaN/Inf values written as 0 (a technique bug when not 0)"};
 
 // Two outputs naming one file would leave only the last written: the render
 // replaced by its statistics, say.
@@ -59,23 +52,15 @@ void checkOutputs(const RenderRequest& r) {
     checkDistinctOutputs(r);
 }
 
-RenderSettings settingsFor(const RenderRequest& r, const Scene& scene) {
+// `q` is the effective request (effectiveRequest): every scene option is set.
+RenderSettings settingsFor(const RenderRequest& q) {
     RenderSettings s;
-    if (r.resolution) std::tie(s.width, s.height) = parseResolution(*r.resolution);
-    else if (scene.render.width) s.width = *scene.render.width, s.height = *scene.render.height;
-    s.spp = r.spp.value_or(scene.render.spp.value_or(1));
-    if (s.spp < 1 || s.spp > (1 << 20)) throw Error("--spp " + std::to_string(s.spp) + " is outside [1, 1048576]");
-    s.seed = r.seed.value_or(scene.render.seed.value_or(0));
+    std::tie(s.width, s.height) = parseResolution(*q.resolution);
+    s.spp = *q.spp;
+    checkRenderNumber("spp", s.spp, kOnCommandLine);  // requests built in code skip the table
+    s.seed = *q.seed;
     s.showProgress = Progress::terminalAttached();
     return s;
-}
-
-// volume.raymarch, or volume.singlescatter for `--set compat=vdb_render`
-// (a vdb_render user's command line works as it is).
-std::string defaultTechnique(const std::vector<std::string>& sets) {
-    for (const std::string& kv : sets)
-        if (kv == "compat=vdb_render") return "volume.singlescatter";
-    return "volume.raymarch";
 }
 
 // Replaces NaN/Inf by 0 (a last guard: techniques must not produce them) and counts them.
@@ -138,8 +123,6 @@ int effectiveThreads(int requested) {
 
 }  // namespace
 
-constexpr int kMaxThreads = 4096;
-
 double physicalMemoryGiB() {
     const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
     return pages > 0 && size > 0 ? double(pages) * double(size) / double(1 << 30) : 16.0;
@@ -160,9 +143,10 @@ void checkMemory(const RenderRequest& r, int width, int height) {
 
 void validateRequest(const RenderRequest& r) {
     if (!r.tile.empty()) parseTileSpec(r.tile);
-    if (r.threads < 0 || r.threads > kMaxThreads)
-        throw Error("--threads " + std::to_string(r.threads) + " is outside [0, " + std::to_string(kMaxThreads) + "] (0 = all cores)");
-    if (!(r.maxMemoryGiB >= 0 && r.maxMemoryGiB <= 1e6)) throw Error("--max-memory must be in [0, 1e6] GiB (0 = 3/4 of physical memory)");
+    // Requests built in code (tests, chains) have not been through the table.
+    checkRenderNumber("threads", r.threads, kOnCommandLine);
+    checkRenderNumber("max-memory", r.maxMemoryGiB, kOnCommandLine);
+    if (r.spp) checkRenderNumber("spp", *r.spp, kOnCommandLine);
     if (r.resolution) {
         const auto [w, h] = parseResolution(*r.resolution);
         checkMemory(r, w, h);
@@ -187,7 +171,8 @@ RenderOutcome renderToImage(const RenderRequest& r) {
     const auto t0 = std::chrono::steady_clock::now();
     const Scene scene = loadScene(r.input, aspect, r.grid, r.frame);
     ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    ctx.settings = settingsFor(r, scene);
+    const RenderRequest q = effectiveRequest(r, scene.render);  // the one precedence rule
+    ctx.settings = settingsFor(q);
     checkMemory(r, ctx.settings.width, ctx.settings.height);  // a scene file's own resolution
     RowBand band{0, ctx.settings.height};
     if (!r.tile.empty()) {
@@ -196,10 +181,10 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         ctx.settings.rowBegin = band.begin, ctx.settings.rowEnd = band.end;
     }
 
-    const std::string name = r.technique.value_or(scene.render.technique.value_or(defaultTechnique(r.sets)));
+    const std::string name = *q.technique;
     const TechniqueInfo& info = techniques().get(name);
-    std::map<std::string, std::string> given = scene.render.params;
-    for (const std::string& kv : r.sets) {
+    std::map<std::string, std::string> given;
+    for (const std::string& kv : q.sets) {
         auto [k, v] = splitKeyValue(kv, "--set");
         given[k] = v;
     }
@@ -216,13 +201,13 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         out.image = technique->render(scene, ctx);
     }
     if (std::int64_t bad = scrubNonFinite(out.image)) {
-        ctx.counters.add("image.nonfinite", bad);
+        ctx.counters.add(kImageNonfinite, bad);
         std::fprintf(stderr, "weft: warning: %s produced %lld NaN/Inf values (written as 0)\n", name.c_str(), (long long)bad);
     }
     out.window = ImageWindow{0, band.begin, out.image.width(), out.image.height()};
     if (!r.tile.empty()) out.image = cropRows(out.image, band.begin, band.end);
     out.counters = ctx.counters.merged();
-    out.metadata = metadataFor(r, name, params, ctx.settings, out.counters);
+    out.metadata = metadataFor(q, name, params, ctx.settings, out.counters);
     if (r.frame) out.metadata.emplace_back("weft:frame", std::to_string(*r.frame));
     if (!scene.shutter.instant())
         out.metadata.emplace_back("weft:shutter", formatNumber(scene.shutter.open) + " " + formatNumber(scene.shutter.close));

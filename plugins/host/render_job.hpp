@@ -12,26 +12,9 @@
 #include "core/image/image.hpp"
 #include "core/image/image_io.hpp"
 #include "core/base/render_context.hpp"
+#include "core/base/render_options.hpp"
 
 namespace weft {
-
-struct RenderRequest {
-    std::string input;            // scene .json, .vdb or builtin:NAME
-    std::string output;           // .exr ("" in a chain: a later step writes)
-    std::string preview;          // optional .png/.jpg
-    std::string stats;            // optional .json
-    std::string grid;             // grid of a bare .vdb input
-    std::optional<std::string> technique;
-    std::vector<std::string> sets;  // "key=value"
-    std::optional<std::string> resolution;  // "WxH"
-    std::optional<int> spp;
-    std::optional<std::uint64_t> seed;
-    int threads = 0;  // 0: all cores
-    bool verbose = false;
-    std::optional<int> frame;  // the frame a scene file is loaded at (names already expanded)
-    std::string tile;          // "i/n": render only row band i of n (core/base/frames.hpp); "" = all
-    double maxMemoryGiB = 0;   // refuse renders whose images alone need more; 0 = 3/4 of physical memory
-};
 
 struct RenderOutcome {
     Image image;          // the whole frame, or the tile's rows only
@@ -62,8 +45,5 @@ std::vector<RenderRequest> requestsForFrames(const RenderRequest& request, const
 // go on. Returns how many failed.
 using AfterRender = std::function<void(const RenderRequest&, RenderOutcome&)>;
 int runRenders(const std::vector<RenderRequest>& requests, const AfterRender& after = {});
-
-// "WxH" -> (W, H), each in [1, 65536]; anything else is an error naming the text.
-std::pair<int, int> parseResolution(const std::string& text);
 
 }  // namespace weft

@@ -55,6 +55,12 @@ namespace weft {
 
 namespace {
 
+const Counter kRaysIndirect{"rays.indirect", "indirect (bounce) rays traced"};
+const Counter kSamplesIndirect{"samples.indirect", "indirect samples shared out over the pixels"};
+const Counter kBudgetActivePixels{"budget.active_pixels", "pixels that take part in the sample budget"};
+const Counter kBudgetMinimum{"budget.minimum", "samples given as the per-pixel minimum of the budget"};
+const Counter kBudgetInvalidImportance{"budget.invalid_importance", "pixels whose importance was invalid or infinite"};
+
 enum class Mode { Uniform, UniformAtrous, AdaptiveAtrous };
 
 struct Params {
@@ -106,7 +112,7 @@ std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
                 const PixelSampler sampler(seed, x, y, batches.indexInPixel(b0 + std::int64_t(k), pixel), counts[pixel]);
                 results[k] = est.irradiance(g.texels[pixel], sampler, rays, media ? &*media : nullptr);
             }
-            counters.add("rays.indirect", rays.bounce), counters.add("rays.shadow", rays.shadow);
+            counters.add(kRaysIndirect, rays.bounce), counters.add(kRaysShadow, rays.shadow);
             if (media) media->report(counters);
         });
         // Store: each pixel adds its samples in order, so batches change nothing.
@@ -120,7 +126,7 @@ std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
         enableFastFloatMode();
         for (int c = 0; c < 3; ++c) sums[3 * i + c] = counts[i] ? sums[3 * i + c] / float(counts[i]) : std::nanf("");
     });
-    counters.add("samples.indirect", offsets.back());
+    counters.add(kSamplesIndirect, offsets.back());
     return sums;
 }
 
@@ -173,7 +179,7 @@ private:
                                             std::vector<float>& importance, const RenderSettings& s, RenderContext& ctx) const {
         std::int64_t activePixels = 0;
         for (std::uint8_t a : active) activePixels += a;
-        ctx.counters.add("budget.active_pixels", activePixels);
+        ctx.counters.add(kBudgetActivePixels, activePixels);
         if (p_.mode != Mode::AdaptiveAtrous) {
             std::vector<std::uint32_t> counts(active.size());
             for (std::size_t i = 0; i < active.size(); ++i) counts[i] = active[i] ? std::uint32_t(s.spp) : 0;
@@ -185,8 +191,8 @@ private:
         }
         ScopedTimer t(ctx.timings, "SC.counts");
         SampleCounts c = apportionSamples(importance, active, {std::int64_t(s.spp) * activePixels, minimumFor(s.spp), s.seed});
-        ctx.counters.add("budget.minimum", c.minimum);
-        ctx.counters.add("budget.invalid_importance", c.invalidImportance + c.infiniteImportance);
+        ctx.counters.add(kBudgetMinimum, c.minimum);
+        ctx.counters.add(kBudgetInvalidImportance, c.invalidImportance + c.infiniteImportance);
         return std::move(c.counts);
     }
 
@@ -233,7 +239,7 @@ private:
                                           t.position.z(), t.depth};
                 std::copy(values, values + 23, px);
             }
-            counters.add("rays.shadow", rays.shadow);
+            counters.add(kRaysShadow, rays.shadow);
             if (media) media->report(counters);
         });
         return img;

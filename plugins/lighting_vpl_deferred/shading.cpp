@@ -14,6 +14,9 @@ namespace weft {
 
 namespace {
 
+const Counter kFragmentsShaded{"fragments.shaded", "texel x VPL evaluations of deferred shading"};
+const Counter kRaysBiasCompensation{"rays.bias_compensation", "rays traced to compensate the bias of clamped VPL contributions"};
+
 // A square tile of one sub-buffer: the unit of parallel work. Square tiles
 // keep the shadow rays from one VPL close together (coherent traversal).
 struct ShadeTask {
@@ -110,8 +113,8 @@ std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<Sh
         const float paths = float((vpls.paths - std::uint32_t(task.subBuffer) + std::uint32_t(S) - 1) / std::uint32_t(S));
         TaskCounts counts;
         shadeTask(scene, split, L, task, subsets[std::size_t(task.subBuffer)], std::max(1.0f, paths), brdfs, cfg, out, counts, counters);
-        counters.add("fragments.shaded", counts.fragments);
-        counters.add("rays.shadow", counts.rays);
+        counters.add(kFragmentsShaded, counts.fragments);
+        counters.add(kRaysShadow, counts.rays);
     });
     return out;
 }
@@ -193,7 +196,7 @@ void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<
                 if (fx.glossy()) out.indirectS += radiance * fx.lobe(wo, wi, t.normal);
             }
         }
-        counters.add("rays.bias_compensation", rays);
+        counters.add(kRaysBiasCompensation, rays);
         if (media) media->report(counters);
     });
 }

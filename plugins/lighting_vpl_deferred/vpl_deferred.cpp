@@ -45,6 +45,13 @@ namespace weft {
 
 namespace {
 
+const Counter kVplPaths{"vpl.paths", "light paths traced to place VPLs"};
+const Counter kVplEmitter{"vpl.emitter", "VPLs placed on emitters"};
+const Counter kVplBounce{"vpl.bounce", "VPLs placed at path bounces"};
+const Counter kRaysVpl{"rays.vpl", "rays traced while placing VPLs"};
+const Counter kFragmentsGbuffer{"fragments.gbuffer", "G-buffer texels filled"};
+const Counter kRaysShadowDelta{"rays.shadow.delta", "shadow rays towards the scene's delta lights (point, directional)"};
+
 std::pair<int, int> parsePair(const std::string& text, int maxValue) {
     int a = 0, b = 0;
     char x = 0, extra = 0;
@@ -106,12 +113,12 @@ public:
 
         VplSet vpls;
         { ScopedTimer t(ctx.timings, "VG.vpls"); vpls = generateVpls(scene, p_.paths, s.seed, volumes, ctx.counters); }
-        ctx.counters.add("vpl.paths", vpls.paths), ctx.counters.add("vpl.emitter", vpls.emitterCount);
-        ctx.counters.add("vpl.bounce", vpls.bounceCount), ctx.counters.add("rays.vpl", vpls.rays);
+        ctx.counters.add(kVplPaths, vpls.paths), ctx.counters.add(kVplEmitter, vpls.emitterCount);
+        ctx.counters.add(kVplBounce, vpls.bounceCount), ctx.counters.add(kRaysVpl, vpls.rays);
 
         GBuffer g;
         { ScopedTimer t(ctx.timings, "BC.gbuffer"); g = createGBuffer(scene, s, ctx.counters); }
-        ctx.counters.add("fragments.gbuffer", std::int64_t(g.texels.size()));
+        ctx.counters.add(kFragmentsGbuffer, std::int64_t(g.texels.size()));
         std::vector<Vec3f> eyeT;
         if (volumes.active()) {
             ScopedTimer t(ctx.timings, "VT.transmittance");
@@ -216,7 +223,7 @@ private:
                                           t.normal.x(), t.normal.y(), t.normal.z(), t.depth};
                 std::copy(values, values + 17, px);
             }
-            counters.add("rays.shadow.delta", rays);
+            counters.add(kRaysShadowDelta, rays);
             if (media) media->report(counters);
         });
         return img;

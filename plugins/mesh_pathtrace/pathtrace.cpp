@@ -62,6 +62,9 @@ namespace weft {
 
 namespace {
 
+const Counter kRaysBounce{"rays.bounce", "path continuation rays after a bounce"};
+const Counter kVolumeCollisions{"volume.collisions", "tentative collisions of free flights and shadow rays"};
+
 struct PathCounts {
     std::int64_t bounce = 0, shadow = 0;
 };
@@ -176,12 +179,12 @@ private:
             return {p.L.x(), p.L.y(), p.L.z(), p.alpha};
         }
         void flush(Counters& counters) const {
-            counters.add("rays.camera", cameraRays);
-            counters.add("rays.bounce", counts.bounce);
-            counters.add("rays.shadow", counts.shadow + (row ? row->shadow.traced : 0));
+            counters.add(kRaysCamera, cameraRays);
+            counters.add(kRaysBounce, counts.bounce);
+            counters.add(kRaysShadow, counts.shadow + (row ? row->shadow.traced : 0));
             if (!row) return;
-            counters.add("volume.lookups", row->flight.lookups + row->shadow.lookups());
-            counters.add("volume.collisions", row->collisions + row->shadow.collisions);
+            counters.add(kVolumeLookups, row->flight.lookups + row->shadow.lookups());
+            counters.add(kVolumeCollisions, row->collisions + row->shadow.collisions);
         }
     };
 

@@ -39,6 +39,8 @@ namespace weft {
 
 namespace {
 
+const Counter kPreintegrationTables{"preintegration.tables", "pre-integration tables built"};
+
 struct AdaptiveParams {
     SliceParams slice;
     std::string oracle;
@@ -74,8 +76,8 @@ public:
             progress.advance();
         }
         progress.finish();
-        ctx.counters.add("slices", slices.imax + 1);
-        ctx.counters.add("preintegration.tables", tables.builtCount());
+        ctx.counters.add(kSlices, slices.imax + 1);
+        ctx.counters.add(kPreintegrationTables, tables.builtCount());
         return pyramid.image(s.width, s.height);
     }
 

@@ -61,7 +61,7 @@ struct KrausState {
     CounterMap finish() {
         for (auto& w : workers)
             if (w) w->flush();
-        counters.add("slices", slices.imax + 1);
+        counters.add(kSlices, slices.imax + 1);
         return counters.merged();
     }
 

@@ -5,6 +5,12 @@
 
 namespace weft {
 
+namespace {
+const Counter kOracleSamples{"oracle.samples", "oracle lookups (the paper's SAMPLE ORACLE)"};
+const Counter kSynthesisOps{"synthesis.ops", "per-pixel syntheses of data and oracle (the paper's SYNTHESIZE)"};
+const IndexedCounter kVolumeSamplesLevel{"volume.samples.level", "volume lookups at pyramid level N"};
+}  // namespace
+
 Pyramid::Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& slices, int lmax, int paddedWidth,
                  int paddedHeight, int imageWidth, int imageHeight) {
     const float background = float(volume.tf.normalize(volume.grid->background()));
@@ -122,11 +128,11 @@ void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
 }
 
 void SliceWorker::flush() {
-    sc_.counters.add("volume.samples", samples_);
-    for (int l = 0; l <= sc_.lmax; ++l) sc_.counters.add("volume.samples.level" + std::to_string(l), samplesPerLevel_[l]);
-    sc_.counters.add("oracle.samples", oracleSamples_);
-    sc_.counters.add("synthesis.ops", syntheses_);
-    sc_.counters.add("composite.ops", composites_);
+    sc_.counters.add(kVolumeSamples, samples_);
+    for (int l = 0; l <= sc_.lmax; ++l) sc_.counters.add(kVolumeSamplesLevel, l, samplesPerLevel_[l]);
+    sc_.counters.add(kOracleSamples, oracleSamples_);
+    sc_.counters.add(kSynthesisOps, syntheses_);
+    sc_.counters.add(kCompositeOps, composites_);
 }
 
 }  // namespace weft

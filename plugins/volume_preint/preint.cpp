@@ -87,7 +87,7 @@ public:
         const Frame frame{scene, vol, slices, tables.forSlices(1), offsets, accel, accel ? rayEpsilon(scene) : 0.0f, s};
         const ImagePlane plane(plane_, s);
         Image image = plane.render(ctx, "volume.preint", [&] { return Shader(frame); });
-        ctx.counters.add("slices", slices.imax + 1);
+        ctx.counters.add(kSlices, slices.imax + 1);
         return image;
     }
 
@@ -155,12 +155,12 @@ private:
             return {px[0], px[1], px[2], px[3]};
         }
         void flush(Counters& counters) const {
-            counters.add("volume.samples", samples);
-            counters.add("composite.ops", composites);
-            counters.add("rays.camera", rays);
+            counters.add(kVolumeSamples, samples);
+            counters.add(kCompositeOps, composites);
+            counters.add(kRaysCamera, rays);
             if (!f.accel) return;  // mesh-free renders keep their counters as they were
-            counters.add("rays.surface", surfaces.surface);
-            counters.add("rays.shadow", surfaces.shadow);
+            counters.add(kRaysSurface, surfaces.surface);
+            counters.add(kRaysShadow, surfaces.shadow);
         }
     };
 

@@ -131,11 +131,11 @@ public:
                 return {acc.r + T * L.x(), acc.g + T * L.y(), acc.b + T * L.z(), 1.0f};
             }
             void flush(Counters& counters) const {
-                counters.add("rays.camera", counts.rays);
-                counters.add("volume.samples", marcher.samples());
+                counters.add(kRaysCamera, counts.rays);
+                counters.add(kVolumeSamples, marcher.samples());
                 if (!accel) return;  // mesh-free renders keep their counters as they were
-                counters.add("rays.surface", counts.surface);
-                counters.add("rays.shadow", counts.shadow);
+                counters.add(kRaysSurface, counts.surface);
+                counters.add(kRaysShadow, counts.shadow);
             }
         };
         return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps, march); });

@@ -16,6 +16,8 @@ namespace weft {
 
 namespace {
 
+const Counter kLightCacheVoxels{"light_cache.voxels", "active voxels of the light caches built"};
+
 using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
 
 // NaN or Inf voxels (a broken simulation) read as empty, never as NaN light.
@@ -123,7 +125,7 @@ void ScatterTracer::buildCaches(RenderContext& ctx) {
             }
             if (accel_) visibilityCaches_.push_back(buildVisibilityCache(*receiver.volume, *accel_, light, params_.cacheCoarsening));
         }
-    ctx.counters.add("light_cache.voxels", voxels);
+    ctx.counters.add(kLightCacheVoxels, voxels);
 }
 
 void ScatterTracer::RowDeleter::operator()(Row* row) const { delete row; }

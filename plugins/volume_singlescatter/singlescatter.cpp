@@ -45,6 +45,9 @@ namespace weft {
 
 namespace {
 
+const Counter kShadowSamples{"shadow.samples", "density lookups for shadows, the light cache included"};
+const Counter kMeshShadowRays{"mesh.shadow_rays", "shadow rays traced against the scene's meshes"};
+
 class SingleScatter final : public Technique {
 public:
     SingleScatter(const Scene& scene, const ParamSet& p) : paramSet_(p), plane_(readImagePlaneOptions(p)) {
@@ -90,10 +93,10 @@ private:
         }
         void flush(Counters& counters) const {
             const ScatterTracer::Counts& n = ScatterTracer::counts(*row);
-            counters.add("rays.camera", rays);
-            counters.add("volume.samples", n.samples);
-            counters.add("shadow.samples", n.shadowSamples);
-            if (meshes) counters.add("mesh.shadow_rays", n.meshShadowRays);
+            counters.add(kRaysCamera, rays);
+            counters.add(kVolumeSamples, n.samples);
+            counters.add(kShadowSamples, n.shadowSamples);
+            if (meshes) counters.add(kMeshShadowRays, n.meshShadowRays);
         }
     };
 

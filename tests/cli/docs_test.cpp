@@ -2,7 +2,8 @@
 // and the part of it between "<!-- BEGIN weft help NAME --markdown -->" and
 // "<!-- END weft help NAME --markdown -->" is exactly what the binary prints
 // for `weft help NAME --markdown` now (scripts/gen-docs.sh rewrites it).
-// The README's technique table links every page.
+// The README's technique table links every page; docs/usage.md holds
+// `weft help options --markdown` between its markers.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -93,4 +94,16 @@ TEST(Docs, HelpMarkdownNeedsATechniqueName) {
     const CommandResult r = runWeft("help --markdown");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.output.find("needs a technique name"), std::string::npos) << r.output;
+}
+
+// docs/usage.md holds the render option table and the counter list the same way.
+TEST(Docs, UsageHoldsWhatWeftHelpRenderPrints) {
+    const fs::path page = fs::path(WEFT_SOURCE_DIR) / "docs" / "usage.md";
+    for (const std::string name : {"options", "counters"}) {
+        const CommandResult help = runWeft("help " + name + " --markdown", kNoPlugins);
+        ASSERT_EQ(help.status, 0) << help.output;
+        std::string part;
+        ASSERT_TRUE(generatedPart(readBytes(page), name, part)) << page.string() << ": " << part;
+        EXPECT_EQ(part, help.output) << "docs/usage.md is out of date with `weft help " << name << " --markdown`: run scripts/gen-docs.sh";
+    }
 }

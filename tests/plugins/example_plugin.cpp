@@ -6,6 +6,8 @@
 
 namespace {
 
+const weft::Counter kExamplePixels{"example.pixels", "pixels the example plugin wrote"};
+
 class Gradient final : public weft::Technique {
 public:
     explicit Gradient(double gain) : gain_(gain) {}
@@ -17,7 +19,7 @@ public:
                 img.at(x, y, 0) = img.at(x, y, 1) = img.at(x, y, 2) = v;
                 img.at(x, y, 3) = 1.0f;
             }
-        ctx.counters.add("example.pixels", std::int64_t(img.width()) * img.height());
+        ctx.counters.add(kExamplePixels, std::int64_t(img.width()) * img.height());
         return img;
     }
 
