@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/base/error.hpp"
+#include "core/lighting/emitters.hpp"
 
 namespace weft {
 
