@@ -26,6 +26,7 @@
 // slice inside the volume: the back sample of one segment is the front
 // sample of the next), composite.ops; with meshes also rays.surface and
 // rays.shadow.
+#include <climits>
 #include <limits>
 
 #include "core/lighting/delta_lights.hpp"
@@ -35,6 +36,7 @@
 #include "core/sampling/pattern_set.hpp"
 #include "core/volume/volume_ray.hpp"
 #include "core/volume/segment_tables.hpp"
+#include "core/volume/slice_volumes.hpp"
 #include "core/volume/slices.hpp"
 #include "core/volume/slice_renderer.hpp"
 #include "plugins/technique.hpp"
@@ -52,23 +54,31 @@ std::vector<ParamSpec> preintParams() {
     return specs;
 }
 
-// Slices inside the volume on pixel (x, y)'s ray when they move `offset` spacings further.
-std::pair<int, int> shiftedSlices(const Scene& scene, const SliceSetup& slices, int x, int y, int w, int h, double offset) {
-    const auto ray = toIndexRay(scene.camera.generate(x + 0.5, y + 0.5, w, h), scene.volumes.front());
+// Slices inside volume k on pixel (x, y)'s ray when they move `offset` spacings further.
+std::pair<int, int> shiftedSlices(const Scene& scene, const SliceSetup& slices, int k, int x, int y, int w, int h, double offset) {
+    const Ray world = scene.camera.generate(x + 0.5, y + 0.5, w, h);
+    const auto ray = toIndexRay(world, scene.volumes[k]);
     if (!ray) return {1, 0};
-    return {int(std::ceil((ray->t0 - slices.tNear) / slices.spacing - offset)),
-            int(std::floor((ray->t1 - slices.tNear) / slices.spacing - offset))};
+    double toRef = 1;  // volume k's index units -> the reference volume's
+    if (k > 0) {
+        const auto& ref = scene.volumes.front().grid->transform();
+        toRef = (ref.worldToIndex(world.origin + world.dir) - ref.worldToIndex(world.origin)).length() / ray->speed;
+    }
+    return {int(std::ceil((ray->t0 * toRef - slices.tNear) / slices.spacing - offset)),
+            int(std::floor((ray->t1 * toRef - slices.tNear) / slices.spacing - offset))};
 }
 
-// Index-space distance from the eye to the first surface on the pixel's ray (infinity: none).
-double surfaceDistance(const Volume& vol, const Ray& ray, const SurfaceHit& hit) {
-    if (!hit.valid()) return std::numeric_limits<double>::infinity();
-    const auto& xf = vol.grid->transform();
-    return double(hit.t) * (xf.worldToIndex(ray.origin + ray.dir) - xf.worldToIndex(ray.origin)).length();
-}
+// Up to this many volumes per segment without a heap allocation.
+constexpr int kMaxVolumes = 64;
 
-struct SurfaceCounts {
-    std::int64_t surface = 0, shadow = 0;
+// What one row's pixels share.
+struct RowState {
+    const std::vector<SliceVolume>& volumes;
+    const SliceSetup& slices;
+    const LevelRays& rays;
+    std::vector<const PreintegrationTable*> tables;  // per volume, one slice long
+    SliceSamplers samplers;
+    std::int64_t samples = 0, composites = 0;
 };
 
 class Preint final : public Technique {
@@ -76,15 +86,19 @@ public:
     Preint(const Scene& scene, const ParamSet& p) : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")) {
         requireSliceableVolume(scene, "volume.preint");
         requireSurfaceLights(scene, "volume.preint");
+        if (scene.volumes.size() > std::size_t(kMaxVolumes))
+            throw Error("volume.preint renders at most " + std::to_string(kMaxVolumes) + " volumes; the scene has " +
+                        std::to_string(scene.volumes.size()));
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
-        const Volume& vol = scene.volumes.front();
-        const SliceSetup slices = makeSliceSetup(scene.camera, vol, params_.spacing, 0);
-        const LevelRays rays = makeLevelRays(scene.camera, vol, slices, 0, s.width, s.height, s.width, s.height);
-        SegmentTables tables(vol.tf, params_.spacing, 1, params_.tableResolution, params_.precision);
-        const PreintegrationTable& table = tables.forSlices(1);
+        const std::vector<SliceVolume> volumes = makeSliceVolumes(scene.volumes);
+        const SliceSetup slices = makeSliceSetup(scene.camera, volumes, params_.spacing, 0);
+        const LevelRays rays = makeLevelRays(scene.camera, volumes, slices, 0, s.width, s.height, s.width, s.height);
+        SliceTables tables(volumes, params_.spacing, 1, params_.tableResolution, params_.precision);
+        std::vector<const PreintegrationTable*> oneSlice;
+        for (const SliceVolume& v : volumes) oneSlice.push_back(&tables.of(v).forSlices(1));
         Image image = Image::rgba(s.width, s.height);
         std::optional<PatternSet> offsets;
         if (!offsetPattern_.empty()) offsets = makePatternSet(offsetPattern_, 1, hashCombine(s.seed, 0x0ff5));
@@ -92,50 +106,21 @@ public:
         if (accel) scene.emitters();
         const float eps = accel ? rayEpsilon(scene) : 0.0f;
         forEachRow(s, "volume.preint", [&](int y) {
-            ScalarSampler sampler(vol);
-            std::int64_t samples = 0, composites = 0;
+            RowState row{volumes, slices, rays, oneSlice, SliceSamplers(volumes)};
             SurfaceCounts surfaces;
             for (int x = 0; x < s.width; ++x) {
-                const int i = rays.index(x, y);
-                SegmentCompositor acc;
-                const double shift = offsets ? offsets->sample(x, y, 0).t : 0.0;
-                const auto [first, last] = offsets ? shiftedSlices(scene, slices, x, y, s.width, s.height, shift)
-                                                   : std::pair<int, int>(rays.first[i], rays.last[i]);
                 Ray worldRay;
                 SurfaceHit hit;
                 if (accel) worldRay = scene.camera.generate(x + 0.5, y + 0.5, s.width, s.height), hit = firstSurface(*accel, worldRay);
-                const double tHit = surfaceDistance(vol, worldRay, hit);
-                // Segments wholly outside the volume are transparent: start one slice before it.
-                const int from = offsets ? first - 1 : std::max(first - 1, 0), to = offsets ? last + 1 : std::min(last + 1, slices.imax);
-                auto position = [&](int k) { return slices.t(k) + shift * slices.spacing; };
-                auto scalarAt = [&](int k) {
-                    const bool inside = k >= first && k <= last;
-                    samples += inside;
-                    return inside ? sampler.sample(slices.eye + rays.dir[i] * position(k)) : sampler.background();
-                };
-                float prev = scalarAt(from);
-                for (int k = from + 1; k <= to; ++k) {
-                    if (position(k) > tHit) {  // the surface cuts this segment: its true length, exactly
-                        const double length = tHit - position(k - 1);
-                        if (length > 0) {
-                            const float back = sampler.sample(slices.eye + rays.dir[i] * tHit);
-                            ++samples;
-                            acc.add(PreintegrationTable::integrateSegment(vol.tf, prev, back, length));
-                            ++composites;
-                        }
-                        break;
-                    }
-                    const float cur = scalarAt(k);
-                    acc.add(table.lookup(0, prev, cur));
-                    ++composites;
-                    prev = cur;
-                }
+                const double shift = offsets ? offsets->sample(x, y, 0).t : 0.0;
+                const SegmentCompositor acc = pixel(scene, row, x, y, offsets.has_value(), shift,
+                                                    surfaceIndexDistance(*volumes.front().volume, worldRay, hit));
                 float* px = image.pixel(x, y);
                 px[0] = acc.r, px[1] = acc.g, px[2] = acc.b, px[3] = acc.a;
-                if (hit.valid()) shadeBehind(scene, *accel, worldRay, hit, PixelSampler(s.seed, x, y, 0, 1), eps, px, surfaces);
+                if (hit.valid()) compositeSurfaceBehind(scene, *accel, worldRay, hit, PixelSampler(s.seed, x, y, 0, 1), eps, px, surfaces);
             }
-            ctx.counters.add("volume.samples", samples);
-            ctx.counters.add("composite.ops", composites);
+            ctx.counters.add("volume.samples", row.samples);
+            ctx.counters.add("composite.ops", row.composites);
             ctx.counters.add("rays.camera", s.width);
             if (!accel) return;  // mesh-free renders keep their counters as they were
             ctx.counters.add("rays.surface", surfaces.surface);
@@ -146,13 +131,52 @@ public:
     }
 
 private:
-    // The surface seen through the volume's pixel px (premultiplied RGBA).
-    static void shadeBehind(const Scene& scene, const MeshAccel& accel, const Ray& ray, const SurfaceHit& hit,
-                            const PixelSampler& sampler, float eps, float* px, SurfaceCounts& counts) {
-        ++counts.surface;
-        const Vec3f L = shadeSurface(scene, accel, ray, hit, sampler, eps, counts.shadow);
-        const float T = 1.0f - px[3];
-        px[0] += T * L.x(), px[1] += T * L.y(), px[2] += T * L.z(), px[3] = 1.0f;
+    // One pixel's volumes, front to back, up to the surface at tHit (voxels; infinity: none).
+    static SegmentCompositor pixel(const Scene& scene, RowState& row, int x, int y, bool shifted, double shift, double tHit) {
+        const int n = int(row.volumes.size()), i = row.rays.index(x, y);
+        const SliceSetup& slices = row.slices;
+        int first[kMaxVolumes], last[kMaxVolumes];
+        int from = INT_MAX, to = INT_MIN;  // segments wholly outside every volume are transparent
+        for (int k = 0; k < n; ++k) {
+            const auto [f, l] = shifted ? shiftedSlices(scene, slices, k, x, y, row.rays.width, row.rays.height, shift)
+                                        : std::pair<int, int>(row.rays.firstOf(k, i), row.rays.lastOf(k, i));
+            first[k] = f, last[k] = l;
+            if (f > l && (k > 0 || n > 1)) continue;  // missed: widens nothing (one volume keeps its old bounds)
+            from = std::min(from, shifted ? f - 1 : std::max(f - 1, 0)), to = std::max(to, shifted ? l + 1 : std::min(l + 1, slices.imax));
+        }
+        SegmentCompositor acc;
+        if (from > to) return acc;
+        const Vec3d dir = row.rays.dir[i];
+        auto position = [&](int k) { return slices.t(k) + shift * slices.spacing; };
+        float prev[kMaxVolumes], cur[kMaxVolumes];
+        PreintSample seg[kMaxVolumes];
+        auto scalars = [&](int k, float* s) {
+            const Vec3d p = slices.eye + dir * position(k);
+            for (int v = 0; v < n; ++v) {
+                const bool inside = k >= first[v] && k <= last[v];
+                row.samples += inside;
+                s[v] = inside ? row.samplers.sample(v, p) : row.samplers.background(v);
+            }
+        };
+        scalars(from, prev);
+        for (int k = from + 1; k <= to; ++k) {
+            if (position(k) > tHit) {  // the surface cuts this segment: its true length, exactly
+                const double length = tHit - position(k - 1);
+                if (length <= 0) break;
+                const Vec3d p = slices.eye + dir * tHit;
+                for (int v = 0; v < n; ++v)
+                    seg[v] = exactSegment(row.volumes[v], prev[v], row.samplers.sample(v, p), length);
+                row.samples += n;
+                acc.add(combineMedia(seg, n));
+                ++row.composites;
+                break;
+            }
+            scalars(k, cur);
+            for (int v = 0; v < n; ++v) seg[v] = row.tables[v]->lookup(0, prev[v], cur[v]), prev[v] = cur[v];
+            acc.add(combineMedia(seg, n));
+            ++row.composites;
+        }
+        return acc;
     }
 
     SliceParams params_;
