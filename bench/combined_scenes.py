@@ -7,8 +7,8 @@ References: volume.singlescatter (vdb_render's shadow gain off) is measured
 against the volumetric path tracer restricted to single scattering
 (mesh.pathtrace max_depth=1, many samples); volume.raymarch, an
 emission-absorption model with no counterpart in the path tracer, against
-itself at a step ten times finer, and so is volume.preint (the same
-emission-absorption model); mesh.pathtrace at its default depth against
+itself at a step ten times finer, and so are volume.preint and
+volume.adaptive3d (the same emission-absorption model); mesh.pathtrace at its default depth against
 itself at four times the samples.
 
   /usr/bin/python3 bench/combined_scenes.py [--res 128x96] [--ref-spp 256] [--pictures docs/images]
@@ -70,6 +70,7 @@ def rows_for(scene, tmp, a):
     cases.append(("volume.raymarch", ["step=0.5"], 1, ref_rm, "raymarch, step 0.05", picture(a, scene, "raymarch")))
     cases.append(("volume.raymarch", ["step=2"], 1, ref_rm, "raymarch, step 0.05", None))
     cases.append(("volume.preint", [], 1, ref_rm, "raymarch, step 0.05", None))
+    cases.append(("volume.adaptive3d", [], 1, ref_rm, "raymarch, step 0.05", None))
     ref_pt = reference(scene, os.path.join(tmp, scene + "_ref_multi.exr"), "mesh.pathtrace", a, a.ref_spp, [],
                        picture(a, scene, "pathtrace"))
     cases.append(("mesh.pathtrace", [], a.ref_spp // 4, ref_pt, "path tracer, %d spp" % a.ref_spp, None))

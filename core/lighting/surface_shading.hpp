@@ -3,7 +3,8 @@
 // (from its front) plus direct light from the scene's lights and emitters,
 // with shadow rays against the meshes (core/lighting/direct_light.hpp), on
 // the Lambert + glossy BRDF the mesh techniques share. Used by the volume
-// techniques that end camera rays at surfaces (volume.raymarch, volume.preint).
+// techniques that end camera rays at surfaces (volume.raymarch, volume.preint,
+// volume.adaptive3d).
 #include <limits>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "core/mesh/mesh_accel.hpp"
 #include "core/sampling/pixel_sampler.hpp"
 #include "core/scene/scene.hpp"
+#include "core/volume/volume.hpp"
 
 namespace weft {
 
@@ -39,6 +41,28 @@ inline Vec3f shadeSurface(const Scene& scene, const MeshAccel& accel, const Ray&
     const Vec3f n = front ? hit.normal : -hit.normal;
     Vec3f L = front && mat.emissive() ? mat.emission : Vec3f(0, 0, 0);
     return L + directLight(scene, accel, p, n, wo, Brdf::of(mat), sampler, 2, eps, shadowRays);
+}
+
+// Index-space distance from the eye to `hit` on a camera ray, in voxels of
+// `vol` (infinity: no hit): where a slice renderer's ray ends.
+inline double surfaceIndexDistance(const Volume& vol, const Ray& ray, const SurfaceHit& hit) {
+    if (!hit.valid()) return std::numeric_limits<double>::infinity();
+    const auto& xf = vol.grid->transform();
+    return double(hit.t) * (xf.worldToIndex(ray.origin + ray.dir) - xf.worldToIndex(ray.origin)).length();
+}
+
+struct SurfaceCounts {
+    std::int64_t surface = 0, shadow = 0;
+};
+
+// Shades `hit` and composites it behind the volume already in px
+// (premultiplied RGBA): colour = volume + (1 - alpha) x surface, alpha 1.
+inline void compositeSurfaceBehind(const Scene& scene, const MeshAccel& accel, const Ray& ray, const SurfaceHit& hit,
+                                   const PixelSampler& sampler, float eps, float* px, SurfaceCounts& counts) {
+    ++counts.surface;
+    const Vec3f L = shadeSurface(scene, accel, ray, hit, sampler, eps, counts.shadow);
+    const float T = 1.0f - px[3];
+    px[0] += T * L.x(), px[1] += T * L.y(), px[2] += T * L.z(), px[3] = 1.0f;
 }
 
 }  // namespace weft

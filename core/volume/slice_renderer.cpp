@@ -16,12 +16,14 @@ SliceParams readSliceParams(const ParamSet& p) {
 }
 
 const Volume& requireSliceableVolume(const Scene& scene, const std::string& technique) {
-    if (scene.volumes.size() != 1)
-        throw Error(technique + " renders exactly one volume; the scene has " + std::to_string(scene.volumes.size()));
-    const Volume& vol = scene.volumes.front();
-    if (vol.tf.lookup(vol.grid->background()).extinction > 0)
-        throw Error(technique + ": the transfer function must be transparent at the grid's background value");
-    return vol;
+    if (scene.volumes.empty()) throw Error(technique + " renders volumes; the scene has none");
+    for (std::size_t k = 0; k < scene.volumes.size(); ++k) {
+        const Volume& vol = scene.volumes[k];
+        if (vol.tf.lookup(vol.grid->background()).extinction > 0)
+            throw Error(technique + ": the transfer function" + (scene.volumes.size() > 1 ? " of volume " + std::to_string(k) : "") +
+                        " must be transparent at the grid's background value");
+    }
+    return scene.volumes.front();
 }
 
 }  // namespace weft

@@ -22,8 +22,9 @@ struct SliceParams {
 std::vector<ParamSpec> sliceParamSpecs();
 SliceParams readSliceParams(const ParamSet& p);
 
-// One volume whose transfer function is transparent at the background value
-// (samples outside the volume read as the background, as in the paper).
+// One or more volumes whose transfer functions are transparent at their
+// background values (samples outside a volume read as its background, as in
+// the paper); returns the first, the reference of the slices.
 const Volume& requireSliceableVolume(const Scene& scene, const std::string& technique);
 
 // Trilinear data lookups returning s = tf.normalize(value).

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/scene/camera.hpp"
+#include "core/volume/slice_volumes.hpp"
 #include "core/volume/volume.hpp"
 
 namespace weft {
@@ -25,6 +26,9 @@ struct SliceSetup {
 // Slices covering the volume's index box, the last index rounded up to a
 // multiple of 2^lmax as the paper requires.
 SliceSetup makeSliceSetup(const Camera& camera, const Volume& volume, double spacing, int lmax);
+// Slices covering every volume's box, in the reference volume's index space
+// (the same setup as above for one volume).
+SliceSetup makeSliceSetup(const Camera& camera, const std::vector<SliceVolume>& volumes, double spacing, int lmax);
 
 // One camera ray in index space: its unit direction from the slices' eye
 // and, when it crosses the index box, its extent there (distances from the
@@ -44,13 +48,20 @@ SliceRay sliceRayOf(const Ray& world, const Volume& volume, const SliceSetup& sl
 struct LevelRays {
     int width = 0, height = 0;
     std::vector<Vec3d> dir;         // index space, unit length
-    std::vector<int> first, last;   // slices inside the index box (first > last: none)
+    // Slices inside each volume's index box (first > last: none), volume-major:
+    // volume k of pixel i at k * pixels + i, so volume 0 is first[i].
+    std::vector<int> first, last;
     int index(int x, int y) const { return y * width + x; }
+    int firstOf(int k, int i) const { return first[std::size_t(k) * dir.size() + i]; }
+    int lastOf(int k, int i) const { return last[std::size_t(k) * dir.size() + i]; }
 };
 
 // Level-0 size is padded up to a multiple of 2^lmax; imageWidth/Height
 // define the camera's pixel grid.
 LevelRays makeLevelRays(const Camera& camera, const Volume& volume, const SliceSetup& slices, int level,
+                        int paddedWidth, int paddedHeight, int imageWidth, int imageHeight);
+// The same with every volume's slices (volume 0's as above).
+LevelRays makeLevelRays(const Camera& camera, const std::vector<SliceVolume>& volumes, const SliceSetup& slices, int level,
                         int paddedWidth, int paddedHeight, int imageWidth, int imageHeight);
 
 }  // namespace weft

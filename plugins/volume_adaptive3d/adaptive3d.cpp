@@ -18,9 +18,18 @@
 // this slice's sample replaces it (as the depth values of Figure 9 do), so
 // every level-0 sample is composited.
 //
+// Meshes: each pixel's ray ends at its first surface (Embree, built only
+// when the scene has meshes). Skipping never passes it (SliceWorker::
+// surfaceBound): a pixel composites on its last slice in front of the
+// surface, then the cut segment with its true length, exactly as
+// volume.preint does; coarse pixels stop at the nearest surface of their
+// footprint and are refined where its surfaces differ in depth. The
+// surface is shaded and composited behind (core/lighting/surface_shading.hpp).
+//
 // Counters (the paper's operations): volume.samples (SAMPLE DATA),
 // oracle.samples (SAMPLE ORACLE), synthesis.ops (SYNTHESIZE DATA+ORACLE of
-// one pixel), composite.ops (ACCUMULATE COLOR of a segment), slices.
+// one pixel), composite.ops (ACCUMULATE COLOR of a segment), slices; with
+// meshes also rays.surface and rays.shadow.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -28,6 +37,8 @@
 #include <bit>
 
 #include "core/base/progress.hpp"
+#include "core/lighting/delta_lights.hpp"
+#include "core/lighting/surface_shading.hpp"
 #include "core/volume/segment_tables.hpp"
 #include "core/volume/slices.hpp"
 #include "oracles/oracle.hpp"
@@ -54,22 +65,28 @@ public:
         : params_{readSliceParams(p), p.getString("oracle"), int(p.getInt("lmax")), p.getFloat("epsilon")},
           oracle_(oracles().get(params_.oracle)) {
         requireSliceableVolume(scene, "volume.adaptive3d");
+        requireSurfaceLights(scene, "volume.adaptive3d");
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
+        const std::vector<SliceVolume> volumes = makeSliceVolumes(scene.volumes);
         const Volume& vol = scene.volumes.front();
         const int block = 1 << params_.lmax;
         const int pw = (s.width + block - 1) / block * block, ph = (s.height + block - 1) / block * block;
-        const SliceSetup slices = makeSliceSetup(scene.camera, vol, params_.slice.spacing, params_.lmax);
-        OracleField field;
+        const SliceSetup slices = makeSliceSetup(scene.camera, volumes, params_.slice.spacing, params_.lmax);
+        std::vector<OracleField> fields;
         {
             ScopedTimer timer(ctx.timings, "oracle");
-            field = oracle_.build({vol, params_.slice.spacing, params_.lmax, params_.epsilon});
+            for (const SliceVolume& v : volumes)
+                fields.push_back(oracle_.build({*v.volume, params_.slice.spacing * v.lengthScale, params_.lmax, params_.epsilon}));
         }
-        Pyramid pyramid(scene.camera, vol, slices, params_.lmax, pw, ph, s.width, s.height);
-        SegmentTables tables(vol.tf, params_.slice.spacing, block, params_.slice.tableResolution, params_.slice.precision);
-        SliceContext sc{vol, field, slices, tables, params_.lmax, ctx.counters};
+        Pyramid pyramid(scene.camera, volumes, slices, params_.lmax, pw, ph, s.width, s.height);
+        const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // no BVH without meshes
+        std::vector<SurfaceHit> hits;
+        if (accel) hits = traceSurfaces(scene, *accel, vol, pyramid, slices, pw, ph, s);
+        SliceTables tables(volumes, params_.slice.spacing, block, params_.slice.tableResolution, params_.slice.precision);
+        SliceContext sc{volumes, fields, slices, tables, params_.lmax, ctx.counters};
         Progress progress("volume.adaptive3d", slices.imax + 1, s.showProgress);
         for (int i = 0; i <= slices.imax; ++i) {
             projectSlice(pyramid, sc, i);
@@ -78,10 +95,49 @@ public:
         progress.finish();
         ctx.counters.add(kSlices, slices.imax + 1);
         ctx.counters.add(kPreintegrationTables, tables.builtCount());
-        return pyramid.image(s.width, s.height);
+        Image image = pyramid.image(s.width, s.height);
+        if (accel) shadeSurfaces(scene, *accel, hits, pw, image, ctx);
+        return image;
     }
 
 private:
+    // Each padded level-0 pixel's first surface; their slices go to the pyramid.
+    static std::vector<SurfaceHit> traceSurfaces(const Scene& scene, const MeshAccel& accel, const Volume& vol, Pyramid& pyramid,
+                                                 const SliceSetup& slices, int pw, int ph, const RenderSettings& s) {
+        std::vector<SurfaceHit> hits(std::size_t(pw) * ph);
+        std::vector<double> tHit(hits.size());
+        tbb::parallel_for(0, ph, [&](int y) {
+            for (int x = 0; x < pw; ++x) {
+                const Ray ray = scene.camera.generate(x + 0.5, y + 0.5, s.width, s.height);
+                const std::size_t i = std::size_t(y) * pw + x;
+                hits[i] = firstSurface(accel, ray);
+                tHit[i] = surfaceIndexDistance(vol, ray, hits[i]);
+            }
+        });
+        pyramid.setSurfaces(std::move(tHit), slices);
+        return hits;
+    }
+
+    static void shadeSurfaces(const Scene& scene, const MeshAccel& accel, const std::vector<SurfaceHit>& hits, int pw,
+                              Image& image, RenderContext& ctx) {
+        const RenderSettings& s = ctx.settings;
+        scene.emitters();  // built before the pixel loop
+        const float eps = rayEpsilon(scene);
+        // An image-space pass over the pixels' surface hits (the settings' row band).
+        const int end = s.rowEnd < 0 ? s.height : std::min(s.rowEnd, s.height);
+        tbb::parallel_for(std::clamp(s.rowBegin, 0, end), end, [&](int y) {
+            SurfaceCounts counts;
+            for (int x = 0; x < s.width; ++x) {
+                const SurfaceHit& hit = hits[std::size_t(y) * pw + x];
+                if (!hit.valid()) continue;
+                const Ray ray = scene.camera.generate(x + 0.5, y + 0.5, s.width, s.height);
+                compositeSurfaceBehind(scene, accel, ray, hit, PixelSampler(s.seed, x, y, 0, 1), eps, image.pixel(x, y), counts);
+            }
+            ctx.counters.add(kRaysSurface, counts.surface);
+            ctx.counters.add(kRaysShadow, counts.shadow);
+        });
+    }
+
     // Figure 4 for slice i: levels l_slice down to 0, tiles of a level in
     // parallel. Off the full slices a pixel does work only when it is due,
     // so tiles with nothing due are passed over whole.
@@ -124,6 +180,8 @@ const TechniqueRegistrar registrar{{
     "oracle-driven adaptive sampling along rays and in the image plane (Kraus et al. 2007)",
     ParamTable("volume.adaptive3d", adaptiveParamSpecs()),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<Adaptive3d>(scene, p); },
+    /*motionBlur=*/false,
+    /*renders=*/Content::VolumesAndMeshes,
 }};
 
 }  // namespace

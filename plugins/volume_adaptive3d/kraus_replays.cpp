@@ -30,6 +30,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/base/error.hpp"
 #include "hwsim/pipeline.hpp"
 #include "hwsim/replay.hpp"
 #include "core/volume/slice_renderer.hpp"
@@ -44,14 +45,23 @@ using namespace hwsim;
 // The core renderer's state for one render, built as Adaptive3d::render builds it.
 struct KrausState {
     KrausState(const Scene& s, const ParamSet& p, int width, int height)
-        : scene(s), vol(requireSliceableVolume(scene, "kraus replay")), slice(readSliceParams(p)),
+        : scene(s), vol(oneVolume(scene)), volumes(makeSliceVolumes(scene.volumes)), slice(readSliceParams(p)),
           lmax(int(p.getInt("lmax"))), block(1 << lmax),
           slices(makeSliceSetup(scene.camera, vol, slice.spacing, lmax)),
-          field(oracles().get(p.getString("oracle")).build({vol, slice.spacing, lmax, p.getFloat("epsilon")})),
-          pyramid(scene.camera, vol, slices, lmax, (width + block - 1) / block * block,
+          fields{oracles().get(p.getString("oracle")).build({vol, slice.spacing, lmax, p.getFloat("epsilon")})},
+          pyramid(scene.camera, volumes, slices, lmax, (width + block - 1) / block * block,
                   (height + block - 1) / block * block, width, height),
-          tables(vol.tf, slice.spacing, block, slice.tableResolution, slice.precision),
-          sc{vol, field, slices, tables, lmax, counters} {}
+          tables(volumes, slice.spacing, block, slice.tableResolution, slice.precision),
+          sc{volumes, fields, slices, tables, lmax, counters} {}
+
+    // The replays draw the paper's passes for one volume and no meshes.
+    static const Volume& oneVolume(const Scene& scene) {
+        const Volume& v = requireSliceableVolume(scene, "kraus replay");
+        if (scene.volumes.size() != 1 || !scene.meshes.empty())
+            throw Error("kraus replay renders exactly one volume and no meshes; the scene has " + std::to_string(scene.volumes.size()) +
+                        " volumes and " + std::to_string(scene.meshes.size()) + " meshes");
+        return v;
+    }
 
     SliceWorker& worker() {
         std::unique_ptr<SliceWorker>& w = workers.local();
@@ -67,12 +77,13 @@ struct KrausState {
 
     const Scene& scene;
     const Volume& vol;
+    std::vector<SliceVolume> volumes;
     SliceParams slice;
     int lmax, block;
     SliceSetup slices;
-    OracleField field;
+    std::vector<OracleField> fields;
     Pyramid pyramid;
-    SegmentTables tables;
+    SliceTables tables;
     Counters counters;
     SliceContext sc;
     tbb::enumerable_thread_specific<std::unique_ptr<SliceWorker>> workers;
@@ -120,12 +131,12 @@ void fig4Slice(KrausState& k, LevelTargets& t, int i) {
         auto storeD = [&](const Fragment& f, int idx) { fb.depth[fb.index(f.x, f.y)] = level.d[idx] * scale; };
         auto synthesize = [&](const Fragment& f, const FragmentOutput&) {
             const int idx = level.rays.index(f.x, f.y);
-            k.worker().synthesize(k.pyramid, l, f.x, f.y, idx);
+            k.worker().synthesize(k.pyramid, l, f.x, f.y, idx, i);
             storeD(f, idx);
         };
         auto sample = [&](const Fragment& f, const FragmentOutput&) {
             const int idx = level.rays.index(f.x, f.y);
-            k.worker().sample(level, l, idx, i);
+            k.worker().sample(k.pyramid, l, idx, i);
             storeD(f, idx);
         };
         auto composite = [&](const Fragment& f, const FragmentOutput&) {
@@ -165,13 +176,13 @@ void fig9Slice(KrausState& k, LevelTargets& t, int i) {
         const int w = level.rays.width, h = level.rays.height;
         auto writeZ = [&](const Fragment& f, const FragmentOutput&) {
             const int idx = level.rays.index(f.x, f.y);
-            if (l < lslice && isDue(level.d[idx], lslice, k.lmax)) k.worker().synthesize(k.pyramid, l, f.x, f.y, idx);
+            if (l < lslice && isDue(level.d[idx], lslice, k.lmax)) k.worker().synthesize(k.pyramid, l, f.x, f.y, idx, i);
             const float d = level.d[idx];
             fb.depth[fb.index(f.x, f.y)] = z(l == k.lmax || d < float(2 << l) ? 4.0f : isDue(d, lslice, k.lmax) ? 2.0f : 0.0f);
         };
         pipe.state.depth = {false, CompareFunc::Less, true};
         pipe.drawRect(0, 0, w, h, 0, withWrites(kRuns, writeZ), {.writesDepth = true});
-        auto sample = [&](const Fragment& f, const FragmentOutput&) { k.worker().sample(level, l, level.rays.index(f.x, f.y), i); };
+        auto sample = [&](const Fragment& f, const FragmentOutput&) { k.worker().sample(k.pyramid, l, level.rays.index(f.x, f.y), i); };
         pipe.state.depth = {l != k.lmax, CompareFunc::Less, false};
         pipe.drawRect(0, 0, w, h, z(3), withWrites(kRuns, sample));
         if (l > 0) continue;

@@ -2,22 +2,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace weft {
 
 namespace {
+
 const Counter kOracleSamples{"oracle.samples", "oracle lookups (the paper's SAMPLE ORACLE)"};
 const Counter kSynthesisOps{"synthesis.ops", "per-pixel syntheses of data and oracle (the paper's SYNTHESIZE)"};
 const IndexedCounter kVolumeSamplesLevel{"volume.samples.level", "volume lookups at pyramid level N"};
+
+// Each volume's background scalar repeated for every pixel, volume-major.
+std::vector<float> backgrounds(const std::vector<SliceVolume>& volumes, std::size_t pixels) {
+    std::vector<float> s;
+    s.reserve(pixels * volumes.size());
+    for (const SliceVolume& v : volumes) s.insert(s.end(), pixels, float(v.volume->tf.normalize(v.volume->grid->background())));
+    return s;
+}
+
 }  // namespace
 
-Pyramid::Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& slices, int lmax, int paddedWidth,
-                 int paddedHeight, int imageWidth, int imageHeight) {
-    const float background = float(volume.tf.normalize(volume.grid->background()));
+Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, const SliceSetup& slices, int lmax,
+                 int paddedWidth, int paddedHeight, int imageWidth, int imageHeight) {
     for (int l = 0; l <= lmax; ++l) {
         PyramidLevel level;
-        level.rays = makeLevelRays(camera, volume, slices, l, paddedWidth, paddedHeight, imageWidth, imageHeight);
-        level.s.assign(level.rays.dir.size(), background);
+        level.rays = makeLevelRays(camera, volumes, slices, l, paddedWidth, paddedHeight, imageWidth, imageHeight);
+        level.s = backgrounds(volumes, level.rays.dir.size());
         level.d.assign(level.rays.dir.size(), 1.0f);
         level.tilesX = (level.rays.width + kTile - 1) / kTile;
         level.tilesY = (level.rays.height + kTile - 1) / kTile;
@@ -26,9 +36,37 @@ Pyramid::Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& s
         levels_.push_back(std::move(level));
     }
     const std::size_t n = levels_[0].rays.dir.size();
-    sPrev.assign(n, background);
+    sPrev = backgrounds(volumes, n);
     iPrev.assign(n, 0);
     color.assign(n, SegmentCompositor{});
+}
+
+void Pyramid::setSurfaces(std::vector<double> tHit, const SliceSetup& slices) {
+    const int kNone = SurfaceSlices::kNoSurface;
+    std::vector<int> k(tHit.size());
+    for (std::size_t i = 0; i < tHit.size(); ++i) {
+        const double at = (tHit[i] - slices.tNear) / slices.spacing;  // +inf without a surface
+        k[i] = at >= slices.imax ? kNone : std::max(-1, int(std::floor(at)));  // beyond the last slice: nothing to cut
+    }
+    surfaces.tHit = std::move(tHit);
+    surfaces.lo.assign(1, k);
+    surfaces.hi.assign(1, std::move(k));
+    for (std::size_t l = 1; l < levels_.size(); ++l) {
+        const LevelRays& fine = levels_[l - 1].rays;
+        const LevelRays& coarse = levels_[l].rays;
+        std::vector<int> lo(coarse.dir.size()), hi(coarse.dir.size());
+        for (int y = 0; y < coarse.height; ++y)
+            for (int x = 0; x < coarse.width; ++x) {
+                int a = kNone, b = -1;
+                for (int c = 0; c < 4; ++c) {
+                    const int child = fine.index(2 * x + (c & 1), 2 * y + (c >> 1));
+                    a = std::min(a, surfaces.lo[l - 1][child]), b = std::max(b, surfaces.hi[l - 1][child]);
+                }
+                lo[coarse.index(x, y)] = a, hi[coarse.index(x, y)] = b;
+            }
+        surfaces.lo.push_back(std::move(lo));
+        surfaces.hi.push_back(std::move(hi));
+    }
 }
 
 Image Pyramid::image(int width, int height) const {
@@ -42,9 +80,12 @@ Image Pyramid::image(int width, int height) const {
     return img;
 }
 
-SliceWorker::SliceWorker(SliceContext& sc)
-    : sc_(sc), data_(sc.volume),
-      oracleAccessor_(sc.field.distance ? sc.field.distance->getConstAccessor() : sc.volume.grid->getConstAccessor()) {}
+SliceWorker::SliceWorker(SliceContext& sc) : sc_(sc), data_(sc.volumes), segments_(sc.volumes.size()) {
+    for (std::size_t k = 0; k < sc.volumes.size(); ++k) {
+        const OracleField& f = sc.fields[k];
+        oracleAccessors_.push_back(f.distance ? f.distance->getConstAccessor() : sc.volumes[k].volume->grid->getConstAccessor());
+    }
+}
 
 std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty) {
     PyramidLevel& level = pyramid.level(l);
@@ -54,10 +95,15 @@ std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, i
     for (int y = ty * kTile; y < y1; ++y)
         for (int x = tx * kTile; x < x1; ++x) {
             const int idx = level.rays.index(x, y);
-            if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesize(pyramid, l, x, y, idx);
+            if (l == 0 && ended(pyramid, idx, slice)) {  // behind its surface: nothing left to do
+                level.d[idx] = float(1 << sc_.lmax);
+                minDue = std::min(minDue, dueLevel(level.d[idx]));
+                continue;
+            }
+            if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesize(pyramid, l, x, y, idx, slice);
             const float d = level.d[idx];
             const bool accumulate = l == 0 && isDue(d, lslice, sc_.lmax);
-            if (l == sc_.lmax || d < sampleBelow) sample(level, l, idx, slice);
+            if (l == sc_.lmax || d < sampleBelow) sample(pyramid, l, idx, slice);
             if (accumulate) composite(pyramid, idx, slice);
             minDue = std::min(minDue, dueLevel(level.d[idx]));
         }
@@ -66,7 +112,7 @@ std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, i
 
 // Figures 5-7: bilinear interpolation of the coarser level at this pixel's
 // centre, i.e. weights 9/16, 3/16, 3/16, 1/16 of the four nearest parents.
-void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx) {
+void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx, int slice) {
     PyramidLevel& fine = pyramid.level(l);
     const PyramidLevel& coarse = pyramid.level(l + 1);
     const int cw = coarse.rays.width, ch = coarse.rays.height;
@@ -79,30 +125,57 @@ void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx) {
         const float bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
         return (1 - fy) * top + fy * bottom;
     };
-    fine.s[idx] = blend(coarse.s);
     fine.d[idx] = blend(coarse.d);
+    const std::size_t fn = fine.rays.dir.size(), cn = coarse.rays.dir.size();
+    for (std::size_t k = 0; k < sc_.volumes.size(); ++k) {
+        const float* v = coarse.s.data() + k * cn;
+        const float top = (1 - fx) * v[ya * cw + xa] + fx * v[ya * cw + xb];
+        const float bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
+        fine.s[k * fn + idx] = (1 - fy) * top + fy * bottom;
+    }
+    if (pyramid.surfaces.any()) fine.d[idx] = surfaceBound(pyramid, l, idx, slice, fine.d[idx]);
     ++syntheses_;
 }
 
-// The oracle is asked on every sample, inside the volume's box or not: a
+float SliceWorker::oracleDistance(int k, const Vec3d& p) {
+    const SliceVolume& v = sc_.volumes[k];
+    return float(sc_.fields[k].at(oracleAccessors_[k], v.toOwn(p)) / v.lengthScale);
+}
+
+// The oracle is asked on every sample, inside a volume's box or not: a
 // coarse ray may still be outside while the finer rays that inherit its
-// distance are already inside.
-void SliceWorker::sample(PyramidLevel& level, int l, int idx, int slice) {
+// distance are already inside. With several volumes the distance is the
+// smallest of the volumes holding the point (of all of them where none
+// does), and never reaches past the start of a volume still ahead.
+void SliceWorker::sample(Pyramid& pyramid, int l, int idx, int slice) {
+    PyramidLevel& level = pyramid.level(l);
     const LevelRays& rays = level.rays;
-    const openvdb::Vec3d p = sc_.slices.eye + rays.dir[idx] * sc_.slices.t(slice);
-    const bool inside = slice >= rays.first[idx] && slice <= rays.last[idx];
-    float dVoxels = sc_.field.at(oracleAccessor_, p);
-    oracleSamples_ += inside || sc_.field.distance;  // a constant oracle costs nothing outside
-    if (inside) {
-        level.s[idx] = data_.sample(p);
-        ++samples_, ++samplesPerLevel_[l];
-    } else {
-        level.s[idx] = data_.background();
-        // Before the volume, skip no further than the slice just in front of
-        // it, whose background sample starts the first segment inside.
-        if (slice < rays.first[idx])
-            dVoxels = std::min(dVoxels, float(std::max(1, rays.first[idx] - 1 - slice) * sc_.slices.spacing));
+    const Vec3d p = sc_.slices.eye + rays.dir[idx] * sc_.slices.t(slice);
+    const int n = int(sc_.volumes.size());
+    const std::size_t pixels = rays.dir.size();
+    float dInside = std::numeric_limits<float>::infinity(), dAll = dInside, dAhead = dInside;
+    for (int k = 0; k < n; ++k) {
+        const int first = rays.firstOf(k, idx);
+        const bool inside = slice >= first && slice <= rays.lastOf(k, idx);
+        float dVoxels = oracleDistance(k, p);
+        oracleSamples_ += inside || sc_.fields[k].distance;  // a constant oracle costs nothing outside
+        float& s = level.s[k * pixels + idx];
+        if (inside) {
+            s = data_.sample(k, p);
+            ++samples_, ++samplesPerLevel_[l];
+            dInside = std::min(dInside, dVoxels);
+        } else {
+            s = data_.background(k);
+            // Before a volume, skip no further than the slice just in front of
+            // it, whose background sample starts its first segment.
+            if (slice < first) {
+                const float ahead = float(std::max(1, first - 1 - slice) * sc_.slices.spacing);
+                dVoxels = std::min(dVoxels, ahead), dAhead = std::min(dAhead, ahead);
+            }
+        }
+        dAll = std::min(dAll, dVoxels);
     }
+    const float dVoxels = dInside < std::numeric_limits<float>::infinity() ? std::min(dInside, dAhead) : dAll;
     // The skipping rule counts image-plane and ray distances in one unit
     // (Kraus et al. assume pixels no wider than a slice): where pixels are
     // wider, distances are counted in pixel widths, so a coarse level never
@@ -110,21 +183,65 @@ void SliceWorker::sample(PyramidLevel& level, int l, int idx, int slice) {
     const double unit = std::max(sc_.slices.spacing, sc_.slices.t(slice) * level.pixelAngle);
     const float maxSlices = float(1 << sc_.lmax);
     level.d[idx] = std::clamp(float(dVoxels / unit), 1.0f, maxSlices);
+    if (pyramid.surfaces.any()) level.d[idx] = surfaceBound(pyramid, l, idx, slice, level.d[idx]);
+}
+
+// Skipping never passes a surface: a level-0 pixel is due on its last
+// slice in front of its surface (the bound keeps every later due slice at
+// or before it), and a coarse pixel on the nearest surface slice of its
+// footprint. Where the footprint's surfaces lie at different depths (an
+// edge or a slanted wall) the coarse pixel is refined, sampled on every
+// slice between them, so no finer pixel is synthesized from samples that
+// skipped across the discontinuity.
+float SliceWorker::surfaceBound(const Pyramid& pyramid, int l, int idx, int slice, float d) const {
+    const int lo = pyramid.surfaces.lo[l][idx], hi = pyramid.surfaces.hi[l][idx];
+    if (slice < lo) return std::min(d, float(lo - slice));
+    if (slice < hi || (l == 0 && slice == hi)) return 1.0f;
+    return d;
 }
 
 // Figure 8: the segment from the previous composite to this slice. A
 // segment with background at both ends adds nothing (the transfer function
-// is transparent there), so it costs no table lookup.
+// is transparent there), so it costs no table lookup; overlapping volumes'
+// segments combine as media whose extinctions add (combineMedia).
 void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
-    const float s0 = pyramid.level(0).s[idx];
-    const float empty = data_.background();
-    if (slice > 0 && !(s0 == empty && pyramid.sPrev[idx] == empty)) {
-        const int length = slice - pyramid.iPrev[idx];
-        pyramid.color[idx].add(sc_.tables.forSlices(length).lookup(0, pyramid.sPrev[idx], s0));
+    const int n = int(sc_.volumes.size());
+    const std::size_t pixels = pyramid.level(0).rays.dir.size();
+    const float* s0 = pyramid.level(0).s.data() + idx;
+    float* sPrev = pyramid.sPrev.data() + idx;
+    bool empty = true;
+    for (int k = 0; k < n; ++k) {
+        const float bg = data_.background(k);
+        segments_[k] = {0, 0, 0, 0};
+        if (s0[k * pixels] == bg && sPrev[k * pixels] == bg) continue;
+        empty = false;
+        if (slice > 0) {
+            const int length = slice - pyramid.iPrev[idx];
+            segments_[k] = sc_.tables.of(sc_.volumes[k]).forSlices(length).lookup(0, sPrev[k * pixels], s0[k * pixels]);
+        }
+    }
+    if (slice > 0 && !empty) {
+        pyramid.color[idx].add(combineMedia(segments_.data(), n));
         ++composites_;
     }
-    pyramid.sPrev[idx] = s0;
+    for (int k = 0; k < n; ++k) sPrev[k * pixels] = s0[k * pixels];
     pyramid.iPrev[idx] = slice;
+    if (pyramid.surfaces.any() && slice == pyramid.surfaces.lo[0][idx]) compositeToSurface(pyramid, idx, slice);
+}
+
+// The segment the surface cuts, from this slice to the surface, with its
+// true length (exact, as volume.preint does), its back scalars read at the surface.
+void SliceWorker::compositeToSurface(Pyramid& pyramid, int idx, int slice) {
+    const double tHit = pyramid.surfaces.tHit[idx], length = tHit - sc_.slices.t(slice);
+    if (!(length > 0)) return;
+    const Vec3d p = sc_.slices.eye + pyramid.level(0).rays.dir[idx] * tHit;
+    const std::size_t pixels = pyramid.level(0).rays.dir.size();
+    const int n = int(sc_.volumes.size());
+    for (int k = 0; k < n; ++k)
+        segments_[k] = exactSegment(sc_.volumes[k], pyramid.level(0).s[k * pixels + idx], data_.sample(k, p), length);
+    samples_ += n, samplesPerLevel_[0] += n;
+    pyramid.color[idx].add(combineMedia(segments_.data(), n));
+    ++composites_;
 }
 
 void SliceWorker::flush() {

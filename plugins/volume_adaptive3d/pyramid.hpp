@@ -1,16 +1,20 @@
 #pragma once
 // The image pyramid of volume.adaptive3d: per level, the rays and the
-// stored data value s and oracle distance d (in slices) of every pixel;
+// stored data values s (one per volume) and oracle distance d (in slices)
+// of every pixel;
 // on level 0 also the previous composite's slice and value and the
 // accumulated colour. SliceWorker is the body of Figure 4 for one row.
 #include <algorithm>
 #include <bit>
+#include <climits>
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "core/base/counters.hpp"
 #include "core/image/image.hpp"
 #include "core/volume/segment_tables.hpp"
+#include "core/volume/slice_volumes.hpp"
 #include "core/volume/slices.hpp"
 #include "oracles/oracle.hpp"
 #include "core/volume/slice_renderer.hpp"
@@ -34,7 +38,7 @@ inline std::uint8_t dueLevel(float d) { return std::uint8_t(std::bit_width(unsig
 
 struct PyramidLevel {
     LevelRays rays;
-    std::vector<float> s;  // normalised data value
+    std::vector<float> s;  // normalised data value, [volume * pixels + pixel]
     std::vector<float> d;  // sampling distance, slices
     int tilesX = 0, tilesY = 0;
     std::vector<std::uint8_t> tileDueLevel;  // min dueLevel(d) over the tile
@@ -43,18 +47,34 @@ struct PyramidLevel {
     double pixelAngle = 0;
 };
 
+// Where the pixels' rays meet their first surfaces, in slices. Level 0
+// holds each pixel's last slice in front of its surface (kNoSurface: none
+// inside the slices, -1: the surface is before the first slice); level l
+// the smallest (lo) and largest (hi) of its 2^l x 2^l level-0 pixels, so a
+// coarse sample knows both the nearest surface in its footprint and whether
+// the footprint holds a depth discontinuity (lo < hi). Empty without meshes.
+struct SurfaceSlices {
+    static constexpr int kNoSurface = INT_MAX;
+    std::vector<std::vector<int>> lo, hi;  // [level][pixel]
+    std::vector<double> tHit;              // level 0: distance to the surface, voxels
+    bool any() const { return !lo.empty(); }
+};
+
 // volume.adaptive3d's parameter table (its replays in hwsim share it).
 std::vector<ParamSpec> adaptiveParamSpecs();
 
 class Pyramid {
 public:
-    Pyramid(const Camera& camera, const Volume& volume, const SliceSetup& slices, int lmax, int paddedWidth,
+    Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, const SliceSetup& slices, int lmax, int paddedWidth,
             int paddedHeight, int imageWidth, int imageHeight);
     PyramidLevel& level(int l) { return levels_[l]; }
     // Level-0 compositing state.
-    std::vector<float> sPrev;
+    std::vector<float> sPrev;  // [volume * pixels + pixel]
     std::vector<int> iPrev;
     std::vector<SegmentCompositor> color;
+    SurfaceSlices surfaces;
+    // Fills `surfaces` from level 0's distances (infinity: no surface).
+    void setSurfaces(std::vector<double> tHit, const SliceSetup& slices);
     // The accumulated colour, cropped to the image.
     Image image(int width, int height) const;
 
@@ -62,11 +82,12 @@ private:
     std::vector<PyramidLevel> levels_;
 };
 
+// fields[k]: volume k's oracle, in its own voxels.
 struct SliceContext {
-    const Volume& volume;
-    const OracleField& field;
+    const std::vector<SliceVolume>& volumes;
+    const std::vector<OracleField>& fields;
     const SliceSetup& slices;
-    SegmentTables& tables;
+    SliceTables& tables;
     int lmax;
     Counters& counters;
 };
@@ -80,14 +101,26 @@ public:
 
     // The three operations of Figure 4 on one pixel (hwsim's replays run
     // them as fragment programs of the paper's GPU passes).
-    void synthesize(Pyramid& pyramid, int l, int x, int y, int idx);
-    void sample(PyramidLevel& level, int l, int idx, int slice);
+    void synthesize(Pyramid& pyramid, int l, int x, int y, int idx, int slice);
+    void sample(Pyramid& pyramid, int l, int idx, int slice);
     void composite(Pyramid& pyramid, int idx, int slice);
 
 private:
+    // Level l's distance d bounded by the surfaces of its footprint after slice `slice`.
+    float surfaceBound(const Pyramid& pyramid, int l, int idx, int slice, float d) const;
+    // Level 0 past its surface: its ray has ended.
+    static bool ended(const Pyramid& pyramid, int idx, int slice) {
+        return pyramid.surfaces.any() && slice > pyramid.surfaces.lo[0][idx];
+    }
+    void compositeToSurface(Pyramid& pyramid, int idx, int slice);
+
     SliceContext& sc_;
-    ScalarSampler data_;
-    openvdb::FloatGrid::ConstAccessor oracleAccessor_;
+    // Volume k's oracle distance at reference position p, in reference voxels.
+    float oracleDistance(int k, const Vec3d& p);
+
+    SliceSamplers data_;
+    std::deque<openvdb::FloatGrid::ConstAccessor> oracleAccessors_;
+    std::vector<PreintSample> segments_;  // one per volume
     std::int64_t samples_ = 0, oracleSamples_ = 0, syntheses_ = 0, composites_ = 0;
     std::int64_t samplesPerLevel_[8] = {};  // where the samples go: volume.samples.level<l>
 };

@@ -26,10 +26,15 @@
 // colour = volume + (1 - alpha) x surface, alpha 1; the volume does not
 // shadow surfaces.
 //
+// Several volumes (core/volume/slice_volumes.hpp): slices are measured in
+// the first volume's index space; every volume is sampled at each slice and
+// overlapping segments combine as media whose extinctions add (combineMedia).
+//
 // Counters: rays.camera, image.samples, slices, volume.samples (one trilinear lookup per
 // slice inside the volume: the back sample of one segment is the front
 // sample of the next), composite.ops; with meshes also rays.surface and
 // rays.shadow.
+#include <climits>
 #include <limits>
 
 #include "core/lighting/delta_lights.hpp"
@@ -39,6 +44,7 @@
 #include "core/sampling/pattern_set.hpp"
 #include "core/volume/volume_ray.hpp"
 #include "core/volume/segment_tables.hpp"
+#include "core/volume/slice_volumes.hpp"
 #include "core/volume/slices.hpp"
 #include "core/volume/slice_renderer.hpp"
 #include "plugins/technique.hpp"
@@ -56,16 +62,24 @@ std::vector<ParamSpec> preintParams() {
     return withImagePlaneParams(std::move(specs));
 }
 
-// Index-space distance from the eye to the first surface on the pixel's ray (infinity: none).
-double surfaceDistance(const Volume& vol, const Ray& ray, const SurfaceHit& hit) {
-    if (!hit.valid()) return std::numeric_limits<double>::infinity();
-    const auto& xf = vol.grid->transform();
-    return double(hit.t) * (xf.worldToIndex(ray.origin + ray.dir) - xf.worldToIndex(ray.origin)).length();
-}
+// Up to this many volumes per segment without a heap allocation.
+constexpr int kMaxVolumes = 64;
 
-struct SurfaceCounts {
-    std::int64_t surface = 0, shadow = 0;
-};
+// Slices inside volume v on a camera ray when every slice moves `shift`
+// spacings further; clamped to [0, imax] unless shifted (first > last: none).
+std::pair<int, int> slicesIn(const SliceVolume& v, const Volume& reference, const Ray& world, const SliceSetup& s,
+                             bool shifted, double shift) {
+    const auto ray = toIndexRay(world, *v.volume);
+    if (!ray) return {1, 0};
+    double toRef = 1;  // own index units -> the reference's: both per unit of the world ray's parameter
+    if (!v.reference) {
+        const auto& ref = reference.grid->transform();
+        toRef = (ref.worldToIndex(world.origin + world.dir) - ref.worldToIndex(world.origin)).length() / ray->speed;
+    }
+    const int first = int(std::ceil((ray->t0 * toRef - s.tNear) / s.spacing - shift));
+    const int last = int(std::floor((ray->t1 * toRef - s.tNear) / s.spacing - shift));
+    return shifted ? std::pair<int, int>(first, last) : std::pair<int, int>(std::max(0, first), std::min(s.imax, last));
+}
 
 class Preint final : public Technique {
 public:
@@ -73,18 +87,23 @@ public:
         : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")), plane_(readImagePlaneOptions(p)) {
         requireSliceableVolume(scene, "volume.preint");
         requireSurfaceLights(scene, "volume.preint");
+        if (scene.volumes.size() > std::size_t(kMaxVolumes))
+            throw Error("volume.preint renders at most " + std::to_string(kMaxVolumes) + " volumes; the scene has " +
+                        std::to_string(scene.volumes.size()));
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
-        const Volume& vol = scene.volumes.front();
-        const SliceSetup slices = makeSliceSetup(scene.camera, vol, params_.spacing, 0);
-        SegmentTables tables(vol.tf, params_.spacing, 1, params_.tableResolution, params_.precision);
+        const std::vector<SliceVolume> volumes = makeSliceVolumes(scene.volumes);
+        const SliceSetup slices = makeSliceSetup(scene.camera, volumes, params_.spacing, 0);
+        SliceTables tables(volumes, params_.spacing, 1, params_.tableResolution, params_.precision);
+        std::vector<const PreintegrationTable*> oneSlice;
+        for (const SliceVolume& v : volumes) oneSlice.push_back(&tables.of(v).forSlices(1));
         std::optional<PatternSet> offsets;
         if (!offsetPattern_.empty()) offsets = makePatternSet(offsetPattern_, s.spp, hashCombine(s.seed, 0x0ff5));
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // built before the pixel loop
         if (accel) scene.emitters();
-        const Frame frame{scene, vol, slices, tables.forSlices(1), offsets, accel, accel ? rayEpsilon(scene) : 0.0f, s};
+        const Frame frame{scene, volumes, slices, oneSlice, offsets, accel, accel ? rayEpsilon(scene) : 0.0f, s};
         const ImagePlane plane(plane_, s);
         Image image = plane.render(ctx, "volume.preint", [&] { return Shader(frame); });
         ctx.counters.add(kSlices, slices.imax + 1);
@@ -95,65 +114,86 @@ private:
     // What every camera sample of one render shares.
     struct Frame {
         const Scene& scene;
-        const Volume& vol;
+        const std::vector<SliceVolume>& volumes;
         const SliceSetup& slices;
-        const PreintegrationTable& table;
+        const std::vector<const PreintegrationTable*>& tables;  // per volume, one slice long
         const std::optional<PatternSet>& offsets;
         const MeshAccel* accel;
         float eps;
         const RenderSettings& s;
     };
 
-    // One per row: a grid sampler and the counts. Each camera sample casts
-    // one ray through every slice; at the pixel centre it is the ray the
-    // renderer always cast there.
+    // One per row: the volumes' samplers and the counts. Each camera sample
+    // casts one ray through every slice; at the pixel centre it is the ray
+    // the renderer always cast there.
     struct Shader {
         const Frame& f;
-        ScalarSampler sampler;
+        SliceSamplers samplers;
         std::int64_t rays = 0, samples = 0, composites = 0;
         SurfaceCounts surfaces;
 
-        explicit Shader(const Frame& frame) : f(frame), sampler(frame.vol) {}
+        explicit Shader(const Frame& frame) : f(frame), samplers(frame.volumes) {}
         Rgba operator()(const CameraSample& c) {
-            const SliceSetup& slices = f.slices;
+            const Volume& reference = *f.volumes.front().volume;
             const Ray worldRay = f.scene.camera.generate(c.x, c.y, f.s.width, f.s.height);
-            const SliceRay ray = sliceRayOf(worldRay, f.vol, slices);
             const double shift = f.offsets ? f.offsets->sample(c.px, c.py, int(c.index % std::uint32_t(f.s.spp))).t : 0.0;
-            const auto [first, last] = f.offsets ? ray.slices(slices, shift) : clamped(ray.slices(slices), slices);
             ++rays;
             const SurfaceHit hit = f.accel ? firstSurface(*f.accel, worldRay) : SurfaceHit{};
-            const double tHit = surfaceDistance(f.vol, worldRay, hit);
+            const SegmentCompositor acc = march(worldRay, reference, shift, surfaceIndexDistance(reference, worldRay, hit));
+            float px[4] = {acc.r, acc.g, acc.b, acc.a};
+            if (hit.valid())
+                compositeSurfaceBehind(f.scene, *f.accel, worldRay, hit, PixelSampler(f.s.seed, c.px, c.py, c.index, std::uint32_t(f.s.spp)),
+                                       f.eps, px, surfaces);
+            return {px[0], px[1], px[2], px[3]};
+        }
+
+        // The ray's volumes, front to back, up to the surface at tHit (reference voxels; infinity: none).
+        SegmentCompositor march(const Ray& worldRay, const Volume& reference, double shift, double tHit) {
+            const int n = int(f.volumes.size());
+            const SliceSetup& slices = f.slices;
+            const bool shifted = f.offsets.has_value();
+            int first[kMaxVolumes], last[kMaxVolumes];
+            int from = INT_MAX, to = INT_MIN;  // segments wholly outside every volume are transparent
+            for (int k = 0; k < n; ++k) {
+                std::tie(first[k], last[k]) = slicesIn(f.volumes[k], reference, worldRay, slices, shifted, shift);
+                if (first[k] > last[k] && n > 1) continue;  // missed: widens nothing (one volume keeps its old bounds)
+                from = std::min(from, shifted ? first[k] - 1 : std::max(first[k] - 1, 0));
+                to = std::max(to, shifted ? last[k] + 1 : std::min(last[k] + 1, slices.imax));
+            }
             SegmentCompositor acc;
-            // Segments wholly outside the volume are transparent: start one slice before it.
-            const int from = f.offsets ? first - 1 : std::max(first - 1, 0), to = f.offsets ? last + 1 : std::min(last + 1, slices.imax);
+            if (from > to) return acc;
+            const Vec3d dir = sliceRayOf(worldRay, reference, slices).dir;
             auto position = [&](int k) { return slices.t(k) + shift * slices.spacing; };
-            auto scalarAt = [&](int k) {
-                const bool inside = k >= first && k <= last;
-                samples += inside;
-                return inside ? sampler.sample(slices.eye + ray.dir * position(k)) : sampler.background();
+            float prev[kMaxVolumes], cur[kMaxVolumes];
+            PreintSample seg[kMaxVolumes];
+            auto scalars = [&](int k, float* s) {
+                const Vec3d p = slices.eye + dir * position(k);
+                for (int v = 0; v < n; ++v) {
+                    const bool inside = k >= first[v] && k <= last[v];
+                    samples += inside;
+                    s[v] = inside ? samplers.sample(v, p) : samplers.background(v);
+                }
             };
-            float prev = scalarAt(from);
+            scalars(from, prev);
             for (int k = from + 1; k <= to; ++k) {
                 if (position(k) > tHit) {  // the surface cuts this segment: its true length, exactly
                     const double length = tHit - position(k - 1);
-                    if (length > 0) {
-                        const float back = sampler.sample(slices.eye + ray.dir * tHit);
-                        ++samples;
-                        acc.add(PreintegrationTable::integrateSegment(f.vol.tf, prev, back, length));
-                        ++composites;
-                    }
+                    if (length <= 0) break;
+                    const Vec3d p = slices.eye + dir * tHit;
+                    for (int v = 0; v < n; ++v) seg[v] = exactSegment(f.volumes[v], prev[v], samplers.sample(v, p), length);
+                    samples += n;
+                    acc.add(combineMedia(seg, n));
+                    ++composites;
                     break;
                 }
-                const float cur = scalarAt(k);
-                acc.add(f.table.lookup(0, prev, cur));
+                scalars(k, cur);
+                for (int v = 0; v < n; ++v) seg[v] = f.tables[v]->lookup(0, prev[v], cur[v]), prev[v] = cur[v];
+                acc.add(combineMedia(seg, n));
                 ++composites;
-                prev = cur;
             }
-            float px[4] = {acc.r, acc.g, acc.b, acc.a};
-            if (hit.valid())
-                shadeBehind(f.scene, *f.accel, worldRay, hit, PixelSampler(f.s.seed, c.px, c.py, c.index, std::uint32_t(f.s.spp)), f.eps, px, surfaces);
-            return {px[0], px[1], px[2], px[3]};
+            return acc;
         }
+
         void flush(Counters& counters) const {
             counters.add(kVolumeSamples, samples);
             counters.add(kCompositeOps, composites);
@@ -163,19 +203,6 @@ private:
             counters.add(kRaysShadow, surfaces.shadow);
         }
     };
-
-    static std::pair<int, int> clamped(std::pair<int, int> r, const SliceSetup& slices) {
-        return {std::max(0, r.first), std::min(slices.imax, r.second)};
-    }
-
-    // The surface seen through the volume's pixel px (premultiplied RGBA).
-    static void shadeBehind(const Scene& scene, const MeshAccel& accel, const Ray& ray, const SurfaceHit& hit,
-                            const PixelSampler& sampler, float eps, float* px, SurfaceCounts& counts) {
-        ++counts.surface;
-        const Vec3f L = shadeSurface(scene, accel, ray, hit, sampler, eps, counts.shadow);
-        const float T = 1.0f - px[3];
-        px[0] += T * L.x(), px[1] += T * L.y(), px[2] += T * L.z(), px[3] = 1.0f;
-    }
 
     SliceParams params_;
     std::string offsetPattern_;
