@@ -9,27 +9,12 @@
 #include <vector>
 
 #include "core/volume/medium.hpp"
+#include "tests/support/volume_fixtures.hpp"
 
 using namespace weft;
+using weft::test::cubeVolume;
 
 namespace {
-
-// A cube of res^3 voxels of size 1/res (world [0, 1)^3), density from f.
-template <class Density>
-Volume cubeVolume(int res, const Vec3d& absorb, const Vec3d& scatter, const Density& f) {
-    initVdb();
-    auto grid = openvdb::FloatGrid::create(0.0f);
-    grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0 / res));
-    auto acc = grid->getAccessor();
-    for (int i = 0; i < res; ++i)
-        for (int j = 0; j < res; ++j)
-            for (int k = 0; k < res; ++k) acc.setValue(openvdb::Coord(i, j, k), f(i, j, k));
-    Volume v;
-    v.grid = grid;
-    v.medium.absorb = absorb, v.medium.scatter = scatter;
-    computeStatistics(v);
-    return v;
-}
 
 Volume homogeneousCube(int res, const Vec3d& absorb, const Vec3d& scatter) {
     return cubeVolume(res, absorb, scatter, [](int, int, int) { return 1.0f; });
