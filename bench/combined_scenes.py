@@ -3,7 +3,7 @@
 technique, the render time and the RMSE against a reference, as a Markdown
 table (and pictures with --pictures DIR).
 
-References: volume.singlescatter (vdb_render's shadow gain off) is measured
+References: volume.singlescatter (physical=true: the path tracer's conventions) is measured
 against the volumetric path tracer restricted to single scattering
 (mesh.pathtrace max_depth=1, many samples); volume.raymarch, an
 emission-absorption model with no counterpart in the path tracer, against
@@ -62,8 +62,8 @@ def reference(scene, out, technique, a, spp, sets, preview=None):
 def rows_for(scene, tmp, a):
     ref_ss = reference(scene, os.path.join(tmp, scene + "_ref_single.exr"), "mesh.pathtrace", a, a.ref_spp, ["max_depth=1"])
     cases = [
-        ("volume.singlescatter", ["gain=0", "estimator=ratio"], a.spp, ref_ss, "path tracer, single scattering", None),
-        ("volume.singlescatter", ["gain=0"], a.spp, ref_ss, "path tracer, single scattering", picture(a, scene, "singlescatter")),
+        ("volume.singlescatter", ["physical=true", "estimator=ratio"], a.spp, ref_ss, "path tracer, single scattering", None),
+        ("volume.singlescatter", ["physical=true"], a.spp, ref_ss, "path tracer, single scattering", picture(a, scene, "singlescatter")),
         ("mesh.pathtrace", ["max_depth=1"], a.spp, ref_ss, "path tracer, single scattering", None),
     ]
     ref_rm = reference(scene, os.path.join(tmp, scene + "_ref_raymarch.exr"), "volume.raymarch", a, 1, ["step=0.05"])

@@ -67,7 +67,7 @@ std::vector<DirectionalOrPointLight> sceneLights(const Scene& scene) {
     std::vector<DirectionalOrPointLight> lights;
     for (const Light& s : scene.lights) {
         if (s.type == LightType::Environment)
-            throw Error("volume.singlescatter: environment lights are not supported yet (directional and point are)");
+            throw Error("volume.singlescatter: environment lights are not supported yet (directional, point and emissive triangles are)");
         DirectionalOrPointLight l;
         l.isPoint = s.type == LightType::Point;
         l.toLight = -s.direction;

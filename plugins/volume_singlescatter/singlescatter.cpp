@@ -1,5 +1,6 @@
 // volume.singlescatter — single scattering in a density grid, lit by
-// directional and point lights, with vdb_render's model and parameter names.
+// directional, point and emissive-triangle lights, with vdb_render's model
+// and parameter names (or, physical=true, the path tracer's conventions).
 //
 // A primary ray gathers, at each sample with density rho >= cutoff,
 //   light * albedo * phase * T_shadow * T_primary * (1 - exp(-sigma_t rho step))
@@ -107,7 +108,7 @@ private:
 
 const TechniqueRegistrar registrar{{
     "volume.singlescatter",
-    "single scattering from directional and point lights, vdb_render's model and names, faster estimators",
+    "single scattering from point, directional and emissive lights, vdb_render's model and names or physical=true, faster estimators",
     ParamTable("volume.singlescatter", withImagePlaneParams(scatterParamSpecs())),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<SingleScatter>(scene, p); },
     /*motionBlur=*/false,
