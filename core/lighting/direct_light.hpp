@@ -29,10 +29,9 @@ inline Vec3f directLight(const Scene& scene, const MeshAccel& accel, const Vec3f
     const Emitters& emitters = scene.emitters();
     if (!emitters.empty()) {
         const EmitterSample e = emitters.sample(sampler.get(dim), sampler.get(dim + 1), sampler.get(dim + 2));
-        Vec3f to = e.position - origin;
-        const float d2 = to.lengthSqr(), d = std::sqrt(d2);
-        to /= d;
-        const float cosX = n.dot(to), cosL = -e.normal.dot(to);
+        const EmitterView v = viewFrom(e, origin);
+        const Vec3f& to = v.wi;
+        const float d = v.distance, d2 = v.distance2, cosX = n.dot(to), cosL = v.cosLight;
         if (cosX > 0 && cosL > 0 && d > 2 * eps) {
             ++shadowRays;
             if (!accel.occluded(origin, to, 0.0f, d * (1.0f - 1e-4f))) {

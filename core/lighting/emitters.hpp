@@ -2,6 +2,7 @@
 // Area lights: every triangle whose material emits. Points are sampled on
 // them in proportion to emitted power (area x luminance of Ke), so bright
 // small lights get their share of samples.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -15,6 +16,20 @@ struct EmitterSample {
     Vec3f radiance;   // Ke
     float pdfArea = 0;  // density per unit area of picking this point
 };
+
+// An emitter point seen from `origin`: the unit direction towards it, its
+// distance (and square), and the cosine at the emitter (> 0: it faces origin).
+struct EmitterView {
+    Vec3f wi;
+    float distance, distance2, cosLight;
+};
+
+inline EmitterView viewFrom(const EmitterSample& e, const Vec3f& origin) {
+    Vec3f to = e.position - origin;
+    const float d2 = to.lengthSqr(), d = std::sqrt(d2);
+    to /= d;
+    return {to, d, d2, -e.normal.dot(to)};
+}
 
 class Emitters {
 public:

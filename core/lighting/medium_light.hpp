@@ -52,10 +52,9 @@ Vec3f directLightThroughMedia(const Scene& scene, const Emitters& emitters, cons
     Vec3f sum(0, 0, 0);
     if (!emitters.empty()) {
         const EmitterSample e = emitters.sample(u0, u1, u2);
-        Vec3f to = e.position - origin;
-        const float d2 = to.lengthSqr(), d = std::sqrt(d2);
-        to /= d;
-        const float cosL = -e.normal.dot(to);
+        const EmitterView v = viewFrom(e, origin);
+        const Vec3f& to = v.wi;
+        const float d = v.distance, d2 = v.distance2, cosL = v.cosLight;
         const Vec3f f = cosL > 0 && d > 2 * eps ? response(to) : Vec3f(0, 0, 0);
         if (f != Vec3f(0, 0, 0))
             sum += f * e.radiance * toVec3f(shadow.transmittance(origin, to, d, rng)) * (cosL / (d2 * e.pdfArea));

@@ -45,18 +45,17 @@ openvdb::CoordBBox Volume::indexBox() const {
     return box;
 }
 
+BBoxd worldBoxOf(const openvdb::math::Transform& xf, const Vec3d& lo, const Vec3d& hi) {
+    BBoxd box;
+    for (int corner = 0; corner < 8; ++corner)
+        box.expand(xf.indexToWorld(Vec3d((corner & 1) ? hi.x() : lo.x(), (corner & 2) ? hi.y() : lo.y(), (corner & 4) ? hi.z() : lo.z())));
+    return box;
+}
+
 BBoxd Volume::worldBox() const {
     if (empty()) return BBoxd();  // an empty box: nothing to frame or to hit
     const openvdb::CoordBBox ib = indexBox();
-    const auto& xf = grid->transform();
-    BBoxd box;
-    for (int corner = 0; corner < 8; ++corner) {
-        const Vec3d p((corner & 1) ? ib.max().x() + 0.5 : ib.min().x() - 0.5,
-                      (corner & 2) ? ib.max().y() + 0.5 : ib.min().y() - 0.5,
-                      (corner & 4) ? ib.max().z() + 0.5 : ib.min().z() - 0.5);
-        box.expand(xf.indexToWorld(p));
-    }
-    return box;
+    return worldBoxOf(grid->transform(), ib.min().asVec3d() - Vec3d(0.5), ib.max().asVec3d() + Vec3d(0.5));
 }
 
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {

@@ -44,6 +44,9 @@ struct Volume {
     BBoxd worldBox() const;
 };
 
+// The world box around index box [lo, hi] (its eight corners mapped by xf).
+BBoxd worldBoxOf(const openvdb::math::Transform& xf, const Vec3d& lo, const Vec3d& hi);
+
 // The grid moved by an object-to-world map after its own transform (the
 // scene file's placement); shares the tree, so nothing is copied.
 openvdb::FloatGrid::ConstPtr placeGrid(const openvdb::FloatGrid::ConstPtr& grid, const openvdb::math::Mat4d& objectToWorld);

@@ -133,10 +133,9 @@ void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const B
     const Emitters& emitters = scene.emitters();
     if (useEmitters && !emitters.empty()) {
         const EmitterSample e = emitters.sample(u[0], u[1], u[2]);
-        Vec3f to = e.position - origin;
-        const float d2 = to.lengthSqr(), dist = std::sqrt(d2);
-        to /= dist;
-        const float cosX = t.normal.dot(to), cosL = -e.normal.dot(to);
+        const EmitterView v = viewFrom(e, origin);
+        const Vec3f& to = v.wi;
+        const float dist = v.distance, d2 = v.distance2, cosX = t.normal.dot(to), cosL = v.cosLight;
         if (cosX > 0 && cosL > 0) {
             ++rays;
             if (!accel.occluded(origin, to, eps, dist * (1.0f - 1e-4f)))

@@ -65,13 +65,7 @@ BBoxd intersectorWorldBox(const Volume& v) {
     openvdb::CoordBBox leaves;
     v.grid->tree().evalLeafBoundingBox(leaves);
     leaves.expand(1);
-    BBoxd box;
-    for (int corner = 0; corner < 8; ++corner) {
-        const Vec3d p((corner & 1) ? leaves.max().x() + 1 : leaves.min().x(), (corner & 2) ? leaves.max().y() + 1 : leaves.min().y(),
-                      (corner & 4) ? leaves.max().z() + 1 : leaves.min().z());
-        box.expand(v.grid->indexToWorld(p));
-    }
-    return box;
+    return worldBoxOf(v.grid->transform(), leaves.min().asVec3d(), leaves.max().asVec3d() + Vec3d(1.0));
 }
 
 }  // namespace
@@ -278,14 +272,10 @@ Vec3d ScatterTracer::scattering(const std::vector<Share>& shares, const Vec3d& s
 ScatterTracer::EmitterLight ScatterTracer::emitterLight(const Vec3d& p, Row& row, Rng& rng) const {
     const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const EmitterSample e = scene_.emitters().sample(u0, u1, u2);
-    Vec3d to = toVec3d(e.position) - p;
-    const double d2 = to.lengthSqr(), d = std::sqrt(d2);
-    if (!(d > 2.0 * double(eps_)) || !(e.pdfArea > 0)) return {};
-    to /= d;
-    const double cosL = -double(e.normal.dot(toVec3f(to)));
-    if (cosL <= 0) return {};
-    const Vec3d T = tracedShadow(p, to, d, row, rng);
-    return {to, toVec3d(e.radiance) * T * (cosL / (d2 * double(e.pdfArea))), true};
+    const EmitterView v = viewFrom(e, toVec3f(p));
+    if (!(v.distance > 2 * eps_) || !(e.pdfArea > 0) || !(v.cosLight > 0)) return {};
+    const Vec3d to = toVec3d(v.wi), T = tracedShadow(p, to, v.distance, row, rng);
+    return {to, toVec3d(e.radiance) * T * (double(v.cosLight) / (double(v.distance2) * double(e.pdfArea))), true};
 }
 
 // Transmittance from p (inside `receiver`) to the light: the cache, or shadow rays.
