@@ -53,6 +53,7 @@ public:
     }
     float sample(int k, const Vec3d& refIndexPos) const { return samplers_[k].sample(volumes_[k].toOwn(refIndexPos)); }
     float background(int k) const { return samplers_[k].background(); }
+    const ScalarSampler& sampler(int k) const { return samplers_[k]; }
     int size() const { return int(samplers_.size()); }
 
 private:

@@ -85,34 +85,18 @@ SliceWorker::SliceWorker(SliceContext& sc) : sc_(sc), data_(sc.volumes), segment
         const OracleField& f = sc.fields[k];
         oracleAccessors_.push_back(f.distance ? f.distance->getConstAccessor() : sc.volumes[k].volume->grid->getConstAccessor());
     }
+    one_ = sc.volumes.size() == 1 && sc.volumes[0].reference && sc.volumes[0].lengthScale == 1;
+    sampler0_ = &data_.sampler(0);
+    oracle0_ = &oracleAccessors_[0];
+    background0_ = data_.background(0);
+    tables0_ = &sc.tables.of(sc.volumes[0]);
 }
 
-std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty) {
-    PyramidLevel& level = pyramid.level(l);
-    const float sampleBelow = float(2 << l);  // 2^(l+1)
-    const int x1 = std::min(level.rays.width, (tx + 1) * kTile), y1 = std::min(level.rays.height, (ty + 1) * kTile);
-    std::uint8_t minDue = 255;
-    for (int y = ty * kTile; y < y1; ++y)
-        for (int x = tx * kTile; x < x1; ++x) {
-            const int idx = level.rays.index(x, y);
-            if (l == 0 && ended(pyramid, idx, slice)) {  // behind its surface: nothing left to do
-                level.d[idx] = float(1 << sc_.lmax);
-                minDue = std::min(minDue, dueLevel(level.d[idx]));
-                continue;
-            }
-            if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesize(pyramid, l, x, y, idx, slice);
-            const float d = level.d[idx];
-            const bool accumulate = l == 0 && isDue(d, lslice, sc_.lmax);
-            if (l == sc_.lmax || d < sampleBelow) sample(pyramid, l, idx, slice);
-            if (accumulate) composite(pyramid, idx, slice);
-            minDue = std::min(minDue, dueLevel(level.d[idx]));
-        }
-    return minDue;
-}
 
 // Figures 5-7: bilinear interpolation of the coarser level at this pixel's
 // centre, i.e. weights 9/16, 3/16, 3/16, 1/16 of the four nearest parents.
-void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx, int slice) {
+template <bool kOne, bool kSurfaces>
+[[gnu::always_inline]] inline void SliceWorker::synthesizeOf(Pyramid& pyramid, int l, int x, int y, int idx, int slice) {
     PyramidLevel& fine = pyramid.level(l);
     const PyramidLevel& coarse = pyramid.level(l + 1);
     const int cw = coarse.rays.width, ch = coarse.rays.height;
@@ -120,20 +104,19 @@ void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx, int
     const float fx = (x & 1) ? 0.25f : 0.75f, fy = (y & 1) ? 0.25f : 0.75f;  // weight of the second parent
     const int xa = std::clamp(x0, 0, cw - 1), xb = std::clamp(x0 + 1, 0, cw - 1);
     const int ya = std::clamp(y0, 0, ch - 1), yb = std::clamp(y0 + 1, 0, ch - 1);
-    auto blend = [&](const std::vector<float>& v) {
+    auto blend = [&](const float* v) {
         const float top = (1 - fx) * v[ya * cw + xa] + fx * v[ya * cw + xb];
         const float bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
         return (1 - fy) * top + fy * bottom;
     };
-    fine.d[idx] = blend(coarse.d);
-    const std::size_t fn = fine.rays.dir.size(), cn = coarse.rays.dir.size();
-    for (std::size_t k = 0; k < sc_.volumes.size(); ++k) {
-        const float* v = coarse.s.data() + k * cn;
-        const float top = (1 - fx) * v[ya * cw + xa] + fx * v[ya * cw + xb];
-        const float bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
-        fine.s[k * fn + idx] = (1 - fy) * top + fy * bottom;
+    fine.d[idx] = blend(coarse.d.data());
+    if constexpr (kOne) {
+        fine.s[idx] = blend(coarse.s.data());
+    } else {
+        const std::size_t fn = fine.rays.dir.size(), cn = coarse.rays.dir.size();
+        for (std::size_t k = 0; k < sc_.volumes.size(); ++k) fine.s[k * fn + idx] = blend(coarse.s.data() + k * cn);
     }
-    if (pyramid.surfaces.any()) fine.d[idx] = surfaceBound(pyramid, l, idx, slice, fine.d[idx]);
+    if constexpr (kSurfaces) fine.d[idx] = surfaceBound(pyramid, l, idx, slice, fine.d[idx]);
     ++syntheses_;
 }
 
@@ -142,15 +125,39 @@ float SliceWorker::oracleDistance(int k, const Vec3d& p) {
     return float(sc_.fields[k].at(oracleAccessors_[k], v.toOwn(p)) / v.lengthScale);
 }
 
-// The oracle is asked on every sample, inside a volume's box or not: a
-// coarse ray may still be outside while the finer rays that inherit its
-// distance are already inside. With several volumes the distance is the
-// smallest of the volumes holding the point (of all of them where none
-// does), and never reaches past the start of a volume still ahead.
-void SliceWorker::sample(Pyramid& pyramid, int l, int idx, int slice) {
-    PyramidLevel& level = pyramid.level(l);
+template <bool kSurfaces>
+[[gnu::always_inline]] inline float SliceWorker::slicesToSkip(const Pyramid& pyramid, int l, int idx, int slice, float dVoxels) const {
+    const PyramidLevel& level = pyramid.level(l);
+    // The skipping rule counts image-plane and ray distances in one unit
+    // (Kraus et al. assume pixels no wider than a slice): where pixels are
+    // wider, distances are counted in pixel widths, so a coarse level never
+    // skips a feature between its rays.
+    const double unit = std::max(sc_.slices.spacing, sc_.slices.t(slice) * level.pixelAngle);
+    const float d = std::clamp(float(dVoxels / unit), 1.0f, float(1 << sc_.lmax));
+    return kSurfaces ? surfaceBound(pyramid, l, idx, slice, d) : d;
+}
+
+// One volume in its own index space: the loop below without its per-volume
+// offsets, transforms and minima (the same values, at the cost the
+// one-volume renderer had before volumes could overlap).
+[[gnu::always_inline]] inline float SliceWorker::sampleOneVolume(PyramidLevel& level, int l, int idx, int slice, const Vec3d& p) {
     const LevelRays& rays = level.rays;
-    const Vec3d p = sc_.slices.eye + rays.dir[idx] * sc_.slices.t(slice);
+    const int first = rays.first[idx];
+    const bool inside = slice >= first && slice <= rays.last[idx];
+    float dVoxels = float(sc_.fields[0].at(*oracle0_, p));
+    oracleSamples_ += inside || sc_.fields[0].distance;
+    if (inside) {
+        level.s[idx] = sampler0_->sample(p);
+        ++samples_, ++samplesPerLevel_[l];
+    } else {
+        level.s[idx] = background0_;
+        if (slice < first) dVoxels = std::min(dVoxels, float(std::max(1, first - 1 - slice) * sc_.slices.spacing));
+    }
+    return dVoxels;
+}
+
+float SliceWorker::sampleVolumes(PyramidLevel& level, int l, int idx, int slice, const Vec3d& p) {
+    const LevelRays& rays = level.rays;
     const int n = int(sc_.volumes.size());
     const std::size_t pixels = rays.dir.size();
     float dInside = std::numeric_limits<float>::infinity(), dAll = dInside, dAhead = dInside;
@@ -175,15 +182,20 @@ void SliceWorker::sample(Pyramid& pyramid, int l, int idx, int slice) {
         }
         dAll = std::min(dAll, dVoxels);
     }
-    const float dVoxels = dInside < std::numeric_limits<float>::infinity() ? std::min(dInside, dAhead) : dAll;
-    // The skipping rule counts image-plane and ray distances in one unit
-    // (Kraus et al. assume pixels no wider than a slice): where pixels are
-    // wider, distances are counted in pixel widths, so a coarse level never
-    // skips a feature between its rays.
-    const double unit = std::max(sc_.slices.spacing, sc_.slices.t(slice) * level.pixelAngle);
-    const float maxSlices = float(1 << sc_.lmax);
-    level.d[idx] = std::clamp(float(dVoxels / unit), 1.0f, maxSlices);
-    if (pyramid.surfaces.any()) level.d[idx] = surfaceBound(pyramid, l, idx, slice, level.d[idx]);
+    return dInside < std::numeric_limits<float>::infinity() ? std::min(dInside, dAhead) : dAll;
+}
+
+// The oracle is asked on every sample, inside a volume's box or not: a
+// coarse ray may still be outside while the finer rays that inherit its
+// distance are already inside. With several volumes the distance is the
+// smallest of the volumes holding the point (of all of them where none
+// does), and never reaches past the start of a volume still ahead.
+template <bool kOne, bool kSurfaces>
+[[gnu::always_inline]] inline void SliceWorker::sampleOf(Pyramid& pyramid, int l, int idx, int slice) {
+    PyramidLevel& level = pyramid.level(l);
+    const Vec3d p = sc_.slices.eye + level.rays.dir[idx] * sc_.slices.t(slice);
+    const float dVoxels = kOne ? sampleOneVolume(level, l, idx, slice, p) : sampleVolumes(level, l, idx, slice, p);
+    level.d[idx] = slicesToSkip<kSurfaces>(pyramid, l, idx, slice, dVoxels);
 }
 
 // Skipping never passes a surface: a level-0 pixel is due on its last
@@ -200,11 +212,18 @@ float SliceWorker::surfaceBound(const Pyramid& pyramid, int l, int idx, int slic
     return d;
 }
 
-// Figure 8: the segment from the previous composite to this slice. A
-// segment with background at both ends adds nothing (the transfer function
-// is transparent there), so it costs no table lookup; overlapping volumes'
-// segments combine as media whose extinctions add (combineMedia).
-void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
+// One volume: its table set straight, no media to combine.
+[[gnu::always_inline]] inline void SliceWorker::compositeOneVolume(Pyramid& pyramid, int idx, int slice) {
+    const float s0 = pyramid.level(0).s[idx];
+    float& sPrev = pyramid.sPrev[idx];
+    if (slice > 0 && !(s0 == background0_ && sPrev == background0_)) {
+        pyramid.color[idx].add(tables0_->forSlices(slice - pyramid.iPrev[idx]).lookup(0, sPrev, s0));
+        ++composites_;
+    }
+    sPrev = s0;
+}
+
+void SliceWorker::compositeVolumes(Pyramid& pyramid, int idx, int slice) {
     const int n = int(sc_.volumes.size());
     const std::size_t pixels = pyramid.level(0).rays.dir.size();
     const float* s0 = pyramid.level(0).s.data() + idx;
@@ -225,8 +244,68 @@ void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
         ++composites_;
     }
     for (int k = 0; k < n; ++k) sPrev[k * pixels] = s0[k * pixels];
+}
+
+// Figure 8: the segment from the previous composite to this slice. A
+// segment with background at both ends adds nothing (the transfer function
+// is transparent there), so it costs no table lookup; overlapping volumes'
+// segments combine as media whose extinctions add (combineMedia).
+template <bool kOne, bool kSurfaces>
+[[gnu::always_inline]] inline void SliceWorker::compositeOf(Pyramid& pyramid, int idx, int slice) {
+    if constexpr (kOne) compositeOneVolume(pyramid, idx, slice);
+    else compositeVolumes(pyramid, idx, slice);
     pyramid.iPrev[idx] = slice;
-    if (pyramid.surfaces.any() && slice == pyramid.surfaces.lo[0][idx]) compositeToSurface(pyramid, idx, slice);
+    if constexpr (kSurfaces)
+        if (slice == pyramid.surfaces.lo[0][idx]) compositeToSurface(pyramid, idx, slice);
+}
+
+// Dispatch on what the scene holds, so that the per-pixel code below is
+// compiled once per case with no test of it inside the loops.
+template <typename F>
+decltype(auto) SliceWorker::dispatch(const Pyramid& pyramid, F&& f) {
+    const bool surfaces = pyramid.surfaces.any();
+    if (one_) return surfaces ? f(Case<true, true>{}) : f(Case<true, false>{});
+    return surfaces ? f(Case<false, true>{}) : f(Case<false, false>{});
+}
+
+std::uint8_t SliceWorker::tile(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty) {
+    return dispatch(pyramid, [&](auto c) { return tileOf<c.one, c.surfaces>(pyramid, l, lslice, slice, tx, ty); });
+}
+
+void SliceWorker::synthesize(Pyramid& pyramid, int l, int x, int y, int idx, int slice) {
+    dispatch(pyramid, [&](auto c) { synthesizeOf<c.one, c.surfaces>(pyramid, l, x, y, idx, slice); });
+}
+
+void SliceWorker::sample(Pyramid& pyramid, int l, int idx, int slice) {
+    dispatch(pyramid, [&](auto c) { sampleOf<c.one, c.surfaces>(pyramid, l, idx, slice); });
+}
+
+void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
+    dispatch(pyramid, [&](auto c) { compositeOf<c.one, c.surfaces>(pyramid, idx, slice); });
+}
+
+template <bool kOne, bool kSurfaces>
+std::uint8_t SliceWorker::tileOf(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty) {
+    PyramidLevel& level = pyramid.level(l);
+    const float sampleBelow = float(2 << l);  // 2^(l+1)
+    const int x1 = std::min(level.rays.width, (tx + 1) * kTile), y1 = std::min(level.rays.height, (ty + 1) * kTile);
+    std::uint8_t minDue = 255;
+    for (int y = ty * kTile; y < y1; ++y)
+        for (int x = tx * kTile; x < x1; ++x) {
+            const int idx = level.rays.index(x, y);
+            if (kSurfaces && l == 0 && slice > pyramid.surfaces.lo[0][idx]) {  // behind its surface: nothing left to do
+                level.d[idx] = float(1 << sc_.lmax);
+                minDue = std::min(minDue, dueLevel(level.d[idx]));
+                continue;
+            }
+            if (l < lslice && isDue(level.d[idx], lslice, sc_.lmax)) synthesizeOf<kOne, kSurfaces>(pyramid, l, x, y, idx, slice);
+            const float d = level.d[idx];
+            const bool accumulate = l == 0 && isDue(d, lslice, sc_.lmax);
+            if (l == sc_.lmax || d < sampleBelow) sampleOf<kOne, kSurfaces>(pyramid, l, idx, slice);
+            if (accumulate) compositeOf<kOne, kSurfaces>(pyramid, idx, slice);
+            minDue = std::min(minDue, dueLevel(level.d[idx]));
+        }
+    return minDue;
 }
 
 // The segment the surface cuts, from this slice to the surface, with its

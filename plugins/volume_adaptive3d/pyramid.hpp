@@ -68,6 +68,7 @@ public:
     Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, const SliceSetup& slices, int lmax, int paddedWidth,
             int paddedHeight, int imageWidth, int imageHeight);
     PyramidLevel& level(int l) { return levels_[l]; }
+    const PyramidLevel& level(int l) const { return levels_[l]; }
     // Level-0 compositing state.
     std::vector<float> sPrev;  // [volume * pixels + pixel]
     std::vector<int> iPrev;
@@ -108,11 +109,24 @@ public:
 private:
     // Level l's distance d bounded by the surfaces of its footprint after slice `slice`.
     float surfaceBound(const Pyramid& pyramid, int l, int idx, int slice, float d) const;
-    // Level 0 past its surface: its ray has ended.
-    static bool ended(const Pyramid& pyramid, int idx, int slice) {
-        return pyramid.surfaces.any() && slice > pyramid.surfaces.lo[0][idx];
-    }
+    // The operations compiled per case: one volume or several, with surfaces or without.
+    template <bool kOne, bool kSurfaces> struct Case {
+        static constexpr bool one = kOne, surfaces = kSurfaces;
+    };
+    template <typename F> decltype(auto) dispatch(const Pyramid& pyramid, F&& f);
+    template <bool kOne, bool kSurfaces> std::uint8_t tileOf(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty);
+    template <bool kOne, bool kSurfaces> void synthesizeOf(Pyramid& pyramid, int l, int x, int y, int idx, int slice);
+    template <bool kOne, bool kSurfaces> void sampleOf(Pyramid& pyramid, int l, int idx, int slice);
+    template <bool kOne, bool kSurfaces> void compositeOf(Pyramid& pyramid, int idx, int slice);
     void compositeToSurface(Pyramid& pyramid, int idx, int slice);
+    // sample()'s and composite()'s work for one volume (the common case, kept
+    // as cheap as before volumes could overlap) and for several.
+    // A sample's distance in slices: dVoxels in slice or pixel widths, clamped, bounded by surfaces.
+    template <bool kSurfaces> float slicesToSkip(const Pyramid& pyramid, int l, int idx, int slice, float dVoxels) const;
+    float sampleOneVolume(PyramidLevel& level, int l, int idx, int slice, const Vec3d& p);
+    float sampleVolumes(PyramidLevel& level, int l, int idx, int slice, const Vec3d& p);
+    void compositeOneVolume(Pyramid& pyramid, int idx, int slice);
+    void compositeVolumes(Pyramid& pyramid, int idx, int slice);
 
     SliceContext& sc_;
     // Volume k's oracle distance at reference position p, in reference voxels.
@@ -121,6 +135,12 @@ private:
     SliceSamplers data_;
     std::deque<openvdb::FloatGrid::ConstAccessor> oracleAccessors_;
     std::vector<PreintSample> segments_;  // one per volume
+    // One volume in its own index space (no placement between the reference and it).
+    bool one_ = false;
+    const ScalarSampler* sampler0_ = nullptr;
+    openvdb::FloatGrid::ConstAccessor* oracle0_ = nullptr;
+    float background0_ = 0;
+    SegmentTables* tables0_ = nullptr;
     std::int64_t samples_ = 0, oracleSamples_ = 0, syntheses_ = 0, composites_ = 0;
     std::int64_t samplesPerLevel_[8] = {};  // where the samples go: volume.samples.level<l>
 };
