@@ -35,6 +35,32 @@ struct CountingIterator {
     bool operator!=(const CountingIterator& o) const { return p != o.p; }
 };
 
+// A quoted token of the input (a number of 400 digits, a long string) is
+// cut to its start and its length, so the line stays readable.
+std::string shortenQuoted(const std::string& text) {
+    constexpr std::size_t kKeep = 24;
+    const std::size_t open = text.find('\'');
+    const std::size_t close = open == std::string::npos ? open : text.rfind('\'');
+    if (open == std::string::npos || close <= open || close - open - 1 <= 2 * kKeep) return text;
+    const std::size_t length = close - open - 1;
+    return text.substr(0, open + 1 + kKeep) + "...' (" + std::to_string(length) + " characters)" + text.substr(close + 1);
+}
+
+// nlohmann's message without its "[json.exception.parse_error.101] parse
+// error at line 1, column 2: " prefix (the caller gives the position).
+std::string jsonErrorInOwnWords(int id, const std::string& what) {
+    std::string msg = what;
+    if (auto bracket = msg.find("] "); msg.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos)
+        msg = msg.substr(bracket + 2);
+    if (msg.rfind("parse error", 0) == 0)
+        if (auto colon = msg.find(": "); colon != std::string::npos) msg = msg.substr(colon + 2);
+    if (id == 406) {  // out_of_range.406: "number overflow parsing '<digits>'"
+        const std::size_t open = msg.find('\'');
+        msg = "number too large for a double" + (open == std::string::npos ? std::string() : ": " + msg.substr(open));
+    }
+    return shortenQuoted(msg);
+}
+
 std::string escapePointerToken(const std::string& key) {
     std::string out;
     for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
@@ -71,11 +97,8 @@ public:
     }
     bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) {
         const TextPos pos = toPos(position > 0 ? position - 1 : 0);
-        std::string msg = ex.what();
-        // nlohmann prefixes "[json.exception.parse_error.101] parse error at line 1, column 2: "
-        if (auto colon = msg.find(": "); colon != std::string::npos) msg = msg.substr(colon + 2);
         throw Error(doc_.file_ + ":" + std::to_string(pos.line) + ":" + std::to_string(pos.column) +
-                    ": JSON syntax error: " + msg);
+                    ": JSON syntax error: " + jsonErrorInOwnWords(ex.id, ex.what()));
     }
 
 private:

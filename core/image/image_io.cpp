@@ -7,6 +7,7 @@
 #include "core/base/atomic_file.hpp"
 #include "core/image/color.hpp"
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 #include "core/image/exr_writer.hpp"
 #include "core/image/image_codec.hpp"
 
@@ -48,7 +49,7 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
 }
 
 Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window) {
-    if (!std::filesystem::exists(path)) throw Error("image '" + path + "': no such file");
+    requireRegularFile(path, "image");
     ImageFileSpec spec;
     std::vector<float> pixels;
     const std::string error = imageCodec().read(path, spec, pixels);

@@ -117,6 +117,24 @@ void writeStats(const RenderRequest& r, const RenderOutcome& out, int threads) {
     file.commit();
 }
 
+// A library's exception leaves a stage as a weft::Error that says which
+// stage of which input failed; running out of memory says what to try.
+template <typename F>
+auto inStage(const std::string& stage, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw Error(stage + ": out of memory (try a smaller --res, fewer samples or a coarser grid; "
+                    "--max-memory GiB refuses renders above a limit before they start)");
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw Error(stage + ": '" + e.path1().string() + "': " + e.code().message());
+    } catch (const std::exception& e) {
+        throw Error(stage + ": " + e.what());
+    }
+}
+
 int effectiveThreads(int requested) {
     return requested > 0 ? requested : int(std::max(1u, std::thread::hardware_concurrency()));
 }
@@ -169,7 +187,7 @@ RenderOutcome renderToImage(const RenderRequest& r) {
         aspect = double(w) / h;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const Scene scene = loadScene(r.input, aspect, r.grid, r.frame);
+    const Scene scene = inStage("loading '" + r.input + "'", [&] { return loadScene(r.input, aspect, r.grid, r.frame); });
     ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     const RenderRequest q = effectiveRequest(r, scene.render);  // the one precedence rule
     ctx.settings = settingsFor(q);
@@ -193,12 +211,14 @@ RenderOutcome renderToImage(const RenderRequest& r) {
     if (scene.cameraMoves() && !info.motionBlur)
         throw Error("the camera moves while the shutter is open, and " + name +
                     " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
-    auto technique = info.create(scene, params);
+    char stage[160];
+    std::snprintf(stage, sizeof stage, "%s at %dx%d", name.c_str(), ctx.settings.width, ctx.settings.height);
+    auto technique = inStage(stage, [&] { return info.create(scene, params); });
 
     RenderOutcome out;
     {
         ScopedTimer timer(ctx.timings, "render");
-        out.image = technique->render(scene, ctx);
+        out.image = inStage(stage, [&] { return technique->render(scene, ctx); });
     }
     if (std::int64_t bad = scrubNonFinite(out.image)) {
         ctx.counters.add(kImageNonfinite, bad);

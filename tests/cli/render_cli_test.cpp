@@ -2,6 +2,8 @@
 // metadata, stats JSON, help, plugin listing, external plugins and diff.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "core/image/image_io.hpp"
@@ -123,6 +125,27 @@ TEST(DiffCli, ReportsMetricsAndFailsAboveThreshold) {
     const auto missing = runWeft("diff " + a + " " + (dir / "none.exr").string());
     EXPECT_EQ(missing.status, 1);
     EXPECT_NE(missing.output.find("no such file"), std::string::npos);
+}
+
+// A cut or corrupt image is named in weft's words: one line, no library
+// exception text ("OpenEXR", "Iex") and no raw bytes of the file.
+TEST(DiffCli, CorruptImagesInOwnWords) {
+    TempDir dir;
+    const std::string good = (dir / "good.exr").string();
+    ASSERT_EQ(runWeft("render builtin:sphere --res 32x32 -o " + good).status, 0);
+    const std::string bytes = readBytes(good);
+    writeText(dir / "cut.exr", bytes.substr(0, bytes.size() * 2 / 3));
+    std::string junk = bytes.substr(0, 8);
+    for (int i = 0; i < 4096; ++i) junk += char((i * 131 + 7) & 0xff);
+    writeText(dir / "junk.exr", junk);
+    writeText(dir / "text.exr", "not an image\n");
+    for (const char* name : {"cut.exr", "junk.exr", "text.exr"}) {
+        const auto r = runWeft("diff " + (dir / name).string() + " " + good);
+        EXPECT_EQ(r.status, 1) << name << ": " << r.output;
+        EXPECT_NE(r.output.find(std::string("image '") + (dir / name).string() + "': cannot be read: "), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("OpenEXR"), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    }
 }
 
 }  // namespace

@@ -39,6 +39,10 @@ protected:
         writeText(dir / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
         writeText(dir / "mixed.json", "{\"volumes\": [{\"procedural\": \"sphere\", \"resolution\": 8}],\n"
                                       " \"meshes\": [{\"file\": \"tri.obj\"}, {\"file\": \"tri.obj\", \"translate\": [0, 0, -1]}]}\n");
+        std::filesystem::create_symlink(dir / "loop2.vdb", dir / "loop1.vdb");
+        std::filesystem::create_symlink(dir / "loop1.vdb", dir / "loop2.vdb");
+        std::filesystem::create_symlink(dir / "gone.obj", dir / "dangling.obj");
+        writeText(dir / "huge.json", "{\"camera\": {\"fov\": 1" + std::string(400, '0') + "}}\n");
         writeText(dir / "range.json", "{\n  \"volumes\": [ { \"procedural\": \"sphere\", \"resolution\": 2 } ]\n}\n");
     }
     // $D: the test's folder; $O: the output path the test passes with -o.
@@ -100,6 +104,9 @@ INSTANTIATE_TEST_SUITE_P(
                      "unknown parameter 'stpe'"},
         BadInputCase{"PlyHeaderCutShort", "$D/cut.ply --res 8x8", "its PLY header has no end_header line"},
         BadInputCase{"FolderAsMesh", "$D/folder.obj --res 8x8", "is a directory, not a file"},
+        BadInputCase{"SymlinkLoopAsVolume", "$D/loop1.vdb --res 8x8", "is a loop of symbolic links"},
+        BadInputCase{"DanglingSymlinkAsMesh", "$D/dangling.obj --res 8x8", "is a symbolic link to '"},
+        BadInputCase{"HugeNumberInScene", "$D/huge.json --res 8x8", "number too large for a double: '100000000000000000000000...' (401 characters)"},
         BadInputCase{"FifoAsVolume", "$D/pipe.vdb --res 8x8", "is a FIFO (named pipe)"},
         BadInputCase{"DeviceAsMesh", "/dev/zero --res 8x8 --technique mesh.pathtrace", "expected a scene .json"},
         BadInputCase{"VdbCutShort", "$D/cut.vdb --res 8x8", "cannot be read: the file is corrupt or cut short"},

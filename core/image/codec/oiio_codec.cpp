@@ -1,6 +1,9 @@
 // The image codec module (weft_oiio.so): OpenImageIO behind
 // core/image/image_codec.hpp, so that only processes that touch image files load it.
 #include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <cstdio>
 
 #include "core/image/image_codec.hpp"
 
@@ -26,19 +29,53 @@ std::string writeImage(const std::string& path, const ImageFileSpec& f, const vo
     return "";
 }
 
-std::string readImage(const std::string& path, ImageFileSpec& f, std::vector<float>& pixels) {
+// Pixels a header may claim before reading is refused: half of physical
+// memory (a corrupt or hostile header must not reach the allocator).
+std::size_t maxPixelBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && size > 0 ? std::size_t(pages) * std::size_t(size) / 2 : std::size_t(1) << 33;
+}
+
+// The library's messages stay inside the module: the caller gets what went
+// wrong in weft's words.
+std::string readPixels(const std::string& path, ImageFileSpec& f, std::vector<float>& pixels) {
     auto in = OIIO::ImageInput::open(path);
-    if (!in) return "cannot be read (" + OIIO::geterror() + ")";
+    if (!in) {
+        OIIO::geterror();  // clear it
+        return "cannot be read: not an image file, or its header is corrupt";
+    }
     const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        return "cannot be read: its header gives no pixels";
+    const double bytes = double(spec.width) * spec.height * spec.nchannels * sizeof(float);
+    if (bytes > double(maxPixelBytes())) {
+        char text[160];
+        std::snprintf(text, sizeof text, "its header claims %dx%d pixels of %d channels (%.1f GiB as float), more than half of this machine's memory",
+                      spec.width, spec.height, spec.nchannels, bytes / double(1 << 30));
+        return text;
+    }
     f.width = spec.width, f.height = spec.height;
     f.channels = spec.channelnames;
     f.x = spec.x - spec.full_x, f.y = spec.y - spec.full_y;
     f.fullWidth = spec.full_width, f.fullHeight = spec.full_height;
     pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return in->geterror();
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+        in->geterror();  // clear it
+        return "cannot be read: its pixel data is cut short or corrupt";
+    }
     for (const auto& attr : spec.extra_attribs)
         if (attr.type() == OIIO::TypeDesc::STRING) f.attributes.emplace_back(attr.name().string(), attr.get_string());
     return "";
+}
+
+std::string readImage(const std::string& path, ImageFileSpec& f, std::vector<float>& pixels) {
+    try {
+        return readPixels(path, f, pixels);
+    } catch (const std::bad_alloc&) {
+        return "cannot be read: not enough memory for its pixels";
+    } catch (const std::exception&) {
+        return "cannot be read: the file is corrupt";
+    }
 }
 
 const weft::ImageCodec kCodec{weft::kImageCodecAbi, writeImage, readImage};
