@@ -10,6 +10,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
+#include "core/volume/vdb_preflight.hpp"
 
 namespace weft {
 
@@ -61,6 +62,7 @@ BBoxd Volume::worldBox() const {
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {
     initVdb();
     requireRegularFile(path, "volume");
+    preflightVdb(path);  // lengths and counts OpenVDB would trust
     openvdb::io::File file(path);
     try {
         file.open(false);
