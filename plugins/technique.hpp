@@ -36,6 +36,11 @@ struct TechniqueInfo {
     // (Scene::cameraAt); others cannot render a moving camera.
     bool motionBlur = false;
     Content renders = Content::Volumes;
+    // Peak working memory per pixel (image, accumulators, AOVs, G-buffers,
+    // pyramids), measured as the slope of peak RSS between 1024x1024 and
+    // 2048x2048 renders; the host refuses renders above --max-memory before
+    // they start. 32: an RGBA float image and its accumulator.
+    double bytesPerPixel = 32;
 };
 
 // Throws when the scene holds volumes or meshes the technique does not

@@ -146,17 +146,29 @@ double physicalMemoryGiB() {
     return pages > 0 && size > 0 ? double(pages) * double(size) / double(1 << 30) : 16.0;
 }
 
-// The least a render of this size needs: the RGBA float image and the copy
-// written out. Refused before anything is allocated when it exceeds the limit.
-void checkMemory(const RenderRequest& r, int width, int height) {
+// What a render needs: the technique's working memory per pixel and the
+// scene already loaded (grids and meshes). Refused before the technique
+// allocates anything when it exceeds the limit.
+void checkMemory(const RenderRequest& r, int width, int height, const std::string& technique, double sceneBytes) {
     const double limit = r.maxMemoryGiB > 0 ? r.maxMemoryGiB : 0.75 * physicalMemoryGiB();
-    const double need = double(width) * double(height) * 4 * sizeof(float) * 2 / double(1 << 30);
+    const double perPixel = techniques().has(technique) ? techniques().get(technique).bytesPerPixel : 32;
+    const double gib = double(1 << 30), image = double(width) * double(height) * perPixel / gib, need = image + sceneBytes / gib;
     if (need > limit) {
-        char text[200];
-        std::snprintf(text, sizeof text, "a %dx%d render needs at least %.3g GiB for its image alone, above the %.3g GiB limit "
-                      "(--max-memory GiB; the default is 3/4 of physical memory)", width, height, need, limit);
+        char text[320];
+        std::snprintf(text, sizeof text, "a %dx%d render with %s needs about %.3g GiB (%.0f bytes per pixel for its image and "
+                      "buffers, %.3g GiB of scene), above the %.3g GiB limit (--max-memory GiB; the default is 3/4 of physical memory)",
+                      width, height, technique.c_str(), need, perPixel, sceneBytes / gib, limit);
         throw Error(text);
     }
+}
+
+// Bytes the loaded scene holds: its grids' trees and its meshes' triangles
+// (vertices, indices and a BVH of about 64 bytes per triangle).
+double sceneBytes(const Scene& scene) {
+    double bytes = 0;
+    for (const Volume& v : scene.volumes) bytes += double(v.grid->memUsage());
+    for (const auto& m : scene.meshes) bytes += double(m.triangleCount()) * (3 * 12 + 12 + 64);
+    return bytes;
 }
 
 void validateRequest(const RenderRequest& r) {
@@ -167,7 +179,7 @@ void validateRequest(const RenderRequest& r) {
     if (r.spp) checkRenderNumber("spp", *r.spp, kOnCommandLine);
     if (r.resolution) {
         const auto [w, h] = parseResolution(*r.resolution);
-        checkMemory(r, w, h);
+        checkMemory(r, w, h, r.technique.value_or(defaultTechnique(r.sets)), 0);
     }
     std::map<std::string, std::string> given;
     for (const std::string& kv : r.sets) given.insert(splitKeyValue(kv, "--set"));
@@ -191,7 +203,7 @@ RenderOutcome renderToImage(const RenderRequest& r) {
     ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     const RenderRequest q = effectiveRequest(r, scene.render);  // the one precedence rule
     ctx.settings = settingsFor(q);
-    checkMemory(r, ctx.settings.width, ctx.settings.height);  // a scene file's own resolution
+    checkMemory(r, ctx.settings.width, ctx.settings.height, *q.technique, sceneBytes(scene));  // the scene's own resolution and technique
     RowBand band{0, ctx.settings.height};
     if (!r.tile.empty()) {
         const auto [index, count] = parseTileSpec(r.tile);

@@ -276,6 +276,7 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<AdaptiveIndirect>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
+    /*bytesPerPixel=*/224,  // G-buffer, importance, A-Trous planes (220 measured)
 }};
 
 }  // namespace

@@ -254,6 +254,7 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<VplDeferred>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
+    /*bytesPerPixel=*/224,  // G-buffer, its split copy, AOVs (217 measured)
 }};
 
 }  // namespace

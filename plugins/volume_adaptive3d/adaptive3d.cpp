@@ -182,6 +182,7 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<Adaptive3d>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
+    /*bytesPerPixel=*/140,  // pyramid levels of rays, values and distances (135 measured)
 }};
 
 }  // namespace
