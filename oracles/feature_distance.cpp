@@ -36,7 +36,12 @@ OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleCo
     // Grow the active region one voxel (26-neighbourhood) at a time. Voxels
     // a dilation activates still hold the background (the cap), which is how
     // each new ring is found and given its distance, all leaves in parallel.
-    for (int k = 1; ringDistance(k - 1, ctx, cap) < cap; ++k) {
+    // Rings past the volume's extent hold no lookup (those read the cap), so
+    // the growth stops there: a cap of thousands of voxels over a small grid
+    // would otherwise dilate it for minutes into gigabytes.
+    const openvdb::Coord extent = ctx.volume.indexBox().dim();
+    const int rings = std::max({extent.x(), extent.y(), extent.z()}) + 2;
+    for (int k = 1; k <= rings && ringDistance(k - 1, ctx, cap) < cap; ++k) {
         tools::dilateActiveValues(distance->tree(), 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
         const float ring = ringDistance(k, ctx, cap);
         tree::LeafManager<FloatTree> leaves(distance->tree());

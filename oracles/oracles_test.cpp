@@ -39,8 +39,10 @@ int chebyshev(const Coord& a, const Coord& b) {
 
 }  // namespace
 
+// The field is grown only as far as the volume reaches (lookups stay inside
+// it), so each test's volume covers the voxels it looks up.
 TEST(FeatureDistance, RingsGrowByOneVoxelUpToTheCap) {
-    const Volume v = boxVolume(0, 1);
+    const Volume v = boxVolume(-12, 12);
     openvdb::MaskGrid features(false);
     features.tree().setValueOn(Coord(0));
     const OracleField f = distanceToFeatures(features, {v, 1.0, 3, 0.01});
@@ -62,7 +64,7 @@ TEST(FeatureDistance, RespectsSpacingAndLmax) {
 }
 
 TEST(FeatureDistance, NeverExceedsTheEuclideanDistanceToAFeature) {
-    const Volume v = boxVolume(0, 1);
+    const Volume v = boxVolume(-10, 50);
     Rng rng(7);
     openvdb::MaskGrid features(false);
     std::vector<Coord> points;
@@ -83,6 +85,16 @@ TEST(FeatureDistance, NeverExceedsTheEuclideanDistanceToAFeature) {
         EXPECT_LE(d, std::max(1.0, euclid) + 1e-6) << c;
         EXPECT_FLOAT_EQ(d, float(std::clamp(cheb, 1, 16))) << c;
     }
+}
+
+TEST(FeatureDistance, StopsGrowingAtTheVolumesExtent) {
+    const Volume v = boxVolume(0, 7);  // index box [-1, 8]^3
+    openvdb::MaskGrid features(false);
+    features.tree().setValueOn(Coord(0));
+    // A cap of 64 * 2^6 voxels: grown ring by ring to the cap, the field would fill billions of voxels.
+    const OracleField f = distanceToFeatures(features, {v, 64.0, 6, 0.01});
+    EXPECT_FLOAT_EQ(distanceAt(f, Coord(8, 8, 8)), 64.0f);
+    EXPECT_LT(f.distance->activeVoxelCount(), openvdb::Index64(64 * 64 * 64));
 }
 
 TEST(TransferFunctionBounds, ExactOverPiecewiseLinearExtinction) {

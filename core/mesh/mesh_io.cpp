@@ -7,7 +7,9 @@
 #include <assimp/scene.h>
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -53,7 +55,34 @@ void readTags(const tinyobj::mesh_t& mesh, PolyMesh& out) {
     }
 }
 
+// tinyobjloader reads a coordinate it cannot parse ("inf", "nan", "1,5") as
+// 0 without a word, so every vertex line's numbers are checked first.
+void checkObjVertexNumbers(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+    for (long n = 1; std::getline(in, line); ++n) {
+        const char* p = line.c_str();
+        while (blank(*p)) ++p;
+        if (p[0] != 'v' || !blank(p[1])) continue;
+        for (p += 1;;) {
+            while (blank(*p)) ++p;
+            if (*p == '\0' || *p == '#') break;
+            char* end = nullptr;
+            const double v = std::strtod(p, &end);
+            if (end == p || !(blank(*end) || *end == '\0' || *end == '#') || !std::isfinite(v)) {
+                const char* w = p;
+                while (*w && !blank(*w)) ++w;
+                fail(path, "line " + std::to_string(n) + ": vertex coordinate '" + std::string(p, std::min<std::size_t>(w - p, 40)) +
+                               "' is not a finite number");
+            }
+            p = end;
+        }
+    }
+}
+
 PolyMesh readObj(const std::string& path) {
+    checkObjVertexNumbers(path);
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;
     config.vertex_color = false;

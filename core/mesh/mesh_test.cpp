@@ -167,3 +167,18 @@ TEST(MeshScene, BareMeshIsFramedAndLit) {
     EXPECT_NEAR((scene.camera.target - box.getCenter()).length(), 0.0, 1e-9);
     EXPECT_GT(scene.camera.eye.z(), box.max().z());
 }
+
+// tinyobjloader reads a word it cannot parse as 0; weft names it instead.
+TEST(MeshLoading, ObjCoordinatesThatAreNotFiniteNumbersAreErrors) {
+    test::TempDir dir;
+    for (const std::string word : {"inf", "-inf", "nan", "1,5", "1e400", "x"}) {
+        test::writeText(dir / "bad.obj", "v 0 0 0\nv 1 0 0\n  v 0 " + word + " 0\nf 1 2 3\n");
+        const std::string msg = errorOf([&] { readPolyMesh((dir / "bad.obj").string()); });
+        EXPECT_NE(msg.find("bad.obj': line 3: vertex coordinate '" + word + "' is not a finite number"), std::string::npos) << msg;
+    }
+    // Comments, CRLF line ends and vertex colours are still read.
+    test::writeText(dir / "ok.obj", "v 0 0 0 # origin\r\nv 1 0 0 1 0.5 0\r\nv 0 1 0\r\nvn 0 0 1\r\nf 1 2 3\r\n");
+    const PolyMesh poly = readPolyMesh((dir / "ok.obj").string());
+    ASSERT_EQ(poly.positions.size(), 3u);
+    EXPECT_EQ(poly.positions[1], Vec3f(1, 0, 0));
+}

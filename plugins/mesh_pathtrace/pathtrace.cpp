@@ -171,7 +171,9 @@ private:
             ++cameraRays;
             if (!row) {
                 const Vec3f L = self.radiance(scene, accel, o, d, sampler, counts);
-                return {L.x(), L.y(), L.z(), 1.0f};
+                // Volumes that are all empty (an empty frame) still composite: alpha 0 where no surface is seen.
+                const bool opaque = scene.volumes.empty() || accel.intersect(o, d, 0.0f, std::numeric_limits<float>::infinity()).valid();
+                return {L.x(), L.y(), L.z(), opaque ? 1.0f : 0.0f};
             }
             Rng rng(hashCombine(hashCombine(s.seed ^ kMediumStream, (std::uint64_t(std::uint32_t(c.px)) << 32) | std::uint32_t(c.py)),
                                 std::uint64_t(c.index)));
