@@ -134,7 +134,11 @@ void walk(std::istream& in, std::uint64_t size, const std::string& name) {
         Descriptor d{w.value<std::int64_t>("grid position"), w.value<std::int64_t>("grid data position"),
                      w.value<std::int64_t>("grid end position"), instance,
                      type == "Tree_float_5_4_3" || type == "Tree_float_5_4_3_HalfFloat"};
-        if (d.gridPos < 0 || d.gridPos > d.blockPos || d.blockPos > d.endPos || std::uint64_t(d.endPos) > size)
+        const bool ordered = d.gridPos >= 0 && d.gridPos <= d.blockPos && d.blockPos <= d.endPos;
+        if (ordered && std::uint64_t(d.endPos) > size)
+            throw Error("volume '" + name + "': the file is cut short (grid " + std::to_string(i + 1) + " ends at byte " +
+                        std::to_string(d.endPos) + ", the file holds " + std::to_string(size) + ")");
+        if (!ordered)
             w.corrupt("grid positions " + std::to_string(d.gridPos) + ", " + std::to_string(d.blockPos) + ", " +
                       std::to_string(d.endPos) + " of a " + std::to_string(size) + "-byte file");
         descriptors.push_back(d);
