@@ -1,38 +1,34 @@
-// weft convert IN.raw[.gz] --dims X,Y,Z --type u8|u16|f32 -o OUT.vdb: a
-// headerless dense volume becomes a sparse fog-volume .vdb that `weft render`
-// reads like any other.
+// weft convert IN -o OUT.vdb: a dense volume becomes a sparse float .vdb
+// that `weft render` reads like any other. IN is a headerless raw file
+// (.raw, .raw.gz: --dims and --type describe it) or a file that describes
+// itself: NRRD (.nrrd, .nhdr), NumPy (.npy) or VTK legacy image data (.vtk).
 #include <openvdb/io/File.h>
 #include <openvdb/tools/Count.h>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/error.hpp"
 #include "core/volume/raw_volume.hpp"
+#include "core/volume/volume_import.hpp"
 #include "plugins/host/command.hpp"
 
 namespace weft {
 
 namespace {
 
-struct ConvertOptions {
-    std::string input, output;
-    std::string dims, type, spacing = "1,1,1", endian = "little", grid = "density";
-};
+const char* const kConvertHelp =
+    "turn a dense volume into a sparse .vdb: headerless raw (.raw, .raw.gz, with --dims and --type), "
+    "NRRD (.nrrd, .nhdr; raw or gzip), NumPy (.npy) or VTK legacy STRUCTURED_POINTS (.vtk)";
 
-// Every option is checked before the input is read, so a typo costs nothing.
-RawVolumeSpec specFrom(const ConvertOptions& o) {
-    RawVolumeSpec spec;
-    spec.dims = parseRawDims(o.dims);
-    spec.type = parseRawType(o.type);
-    spec.spacing = parseRawSpacing(o.spacing);
-    spec.byteOrder = parseByteOrder(o.endian);
-    spec.gridName = o.grid;
-    rawByteCount(spec);  // overflow and absurd sizes
-    return spec;
-}
+struct ConvertCommand {
+    std::string input, output;
+    ImportOptions options;
+};
 
 void checkVdbOutput(const std::string& path) {
     if (std::filesystem::path(path).extension() != ".vdb")
@@ -55,7 +51,20 @@ std::string vecText(const openvdb::Vec3d& v) {
     return buf;
 }
 
-void printSummary(const ConvertOptions& o, const RawVolumeSpec& spec, const openvdb::FloatGrid& grid, double seconds) {
+// Where the volume sits, when it is not the default (origin 0, axis-aligned, background 0).
+std::string placementText(const RawVolumeSpec& spec) {
+    std::string text;
+    if (spec.origin != openvdb::Vec3d(0.0)) text += ", origin " + vecText(spec.origin);
+    if (!spec.direction.eq(openvdb::Mat3d::identity(), 0.0)) text += ", rotated or sheared axes";
+    if (spec.background != 0.0) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, ", background %g", spec.background);
+        text += buf;
+    }
+    return text;
+}
+
+void printSummary(const ConvertCommand& c, const VolumeImport& im, const openvdb::FloatGrid& grid, double seconds) {
     const openvdb::Index64 active = grid.activeVoxelCount();
     std::string range = "none";
     if (active > 0) {
@@ -64,33 +73,64 @@ void printSummary(const ConvertOptions& o, const RawVolumeSpec& spec, const open
         std::snprintf(buf, sizeof buf, "%g..%g", mm.min(), mm.max());
         range = buf;
     }
-    std::printf("%s: %dx%dx%d %s -> %llu active voxels, values %s, voxel size %s, grid '%s' -> %s (%.2f s)\n",
-                o.input.c_str(), spec.dims.x(), spec.dims.y(), spec.dims.z(), rawTypeName(spec.type),
-                (unsigned long long)active, range.c_str(), vecText(spec.spacing).c_str(), spec.gridName.c_str(),
-                o.output.c_str(), seconds);
+    const RawVolumeSpec& spec = im.spec;
+    std::printf("%s: %s %dx%dx%d %s -> %llu active voxels, values %s, voxel size %s%s, grid '%s' -> %s (%.2f s)\n",
+                c.input.c_str(), im.format.c_str(), spec.dims.x(), spec.dims.y(), spec.dims.z(), rawTypeName(spec.type),
+                (unsigned long long)active, range.c_str(), vecText(spec.spacing).c_str(), placementText(spec).c_str(),
+                spec.gridName.c_str(), c.output.c_str(), seconds);
 }
 
-void runConvert(const ConvertOptions& o) {
+void runConvert(const ConvertCommand& c) {
     const auto start = std::chrono::steady_clock::now();
-    const RawVolumeSpec spec = specFrom(o);
-    checkVdbOutput(o.output);
-    const openvdb::FloatGrid::Ptr grid = readRawVolume(o.input, spec);
-    writeVdb(grid, o.output);
+    checkVdbOutput(c.output);
+    const VolumeImport im = planImport(c.input, c.options);
+    const openvdb::FloatGrid::Ptr grid = readVolumeSamples(im.data, im.spec);
+    writeVdb(grid, c.output);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    printSummary(o, spec, *grid, seconds);
+    printSummary(c, im, *grid, seconds);
 }
+
+// An option that may be absent: its text when given (even empty).
+struct Optional {
+    CLI::Option* option;
+    std::string* text;
+    std::optional<std::string> get() const { return option->count() ? std::optional<std::string>(*text) : std::nullopt; }
+};
 
 const CommandRegistrar registrar{{"convert", 30, [](CLI::App& app) {
-    auto* cmd = app.add_subcommand("convert", "turn a headerless dense volume (.raw, .raw.gz) into a sparse .vdb");
-    auto o = std::make_shared<ConvertOptions>();
-    cmd->add_option("input", o->input, "raw samples, x fastest then y then z; gzip when the name ends in .gz")->required();
-    cmd->add_option("--dims", o->dims, "samples along x,y,z, e.g. 256,256,256")->required();
-    cmd->add_option("--type", o->type, "sample type: u8|u16|f32 (values are kept as numbers)")->required();
-    cmd->add_option("--spacing", o->spacing, "voxel size sx,sy,sz in world units")->capture_default_str();
-    cmd->add_option("--endian", o->endian, "byte order of u16/f32 samples: little|big")->capture_default_str();
-    cmd->add_option("--grid", o->grid, "name of the grid in the .vdb")->capture_default_str();
-    cmd->add_option("-o,--output", o->output, "output .vdb (written atomically)")->required();
-    cmd->callback([o] { runConvert(*o); });
+    auto* cmd = app.add_subcommand("convert", kConvertHelp);
+    auto c = std::make_shared<ConvertCommand>();
+    auto texts = std::make_shared<std::array<std::string, 7>>();
+    auto& t = *texts;
+    cmd->add_option("input", c->input,
+                    "the volume; samples x fastest, then y, then z; gzip when a raw file's name ends in .gz; a C-ordered "
+                    ".npy array of shape (Z,Y,X) or a Fortran-ordered one of shape (X,Y,Z)")->required();
+    const std::array<Optional, 7> given{{
+        {cmd->add_option("--dims", t[0], "samples along x,y,z, e.g. 256,256,256 (raw files; a header states them)"), &t[0]},
+        {cmd->add_option("--type", t[1], std::string("sample type: ") + rawTypeNames() +
+                                             " (raw files; values are kept as numbers, integers beyond 2^24 round to float)"), &t[1]},
+        {cmd->add_option("--spacing", t[2], "voxel size sx,sy,sz in world units (default 1,1,1)"), &t[2]},
+        {cmd->add_option("--endian", t[3], "byte order of multi-byte samples: little|big (default little)"), &t[3]},
+        {cmd->add_option("--origin", t[4], "world position x,y,z of voxel (0,0,0) (default 0,0,0)"), &t[4]},
+        {cmd->add_option("--direction", t[5], "3x3 matrix, 9 numbers row by row, whose columns are the world directions "
+                                              "of the x, y, z axes: world = origin + direction * diag(spacing) * index "
+                                              "(default identity)"), &t[5]},
+        {cmd->add_option("--background", t[6], "samples equal to it are inactive and it is the grid's background "
+                                               "(default 0; e.g. -1000 for CT in Hounsfield units)"), &t[6]},
+    }};
+    cmd->add_option("--grid", c->options.grid, "name of the grid in the .vdb")->capture_default_str();
+    cmd->add_option("-o,--output", c->output, "output .vdb (written atomically)")->required();
+    cmd->callback([c, texts, given] {
+        ImportOptions& o = c->options;
+        o.dims = given[0].get();
+        o.type = given[1].get();
+        o.spacing = given[2].get();
+        o.endian = given[3].get();
+        o.origin = given[4].get();
+        o.direction = given[5].get();
+        o.background = given[6].get();
+        runConvert(*c);
+    });
 }}};
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "core/volume/volume.hpp"
 #include "tests/support/raw_samples.hpp"
 #include "tests/support/test_support.hpp"
+#include "tests/support/volume_files.hpp"
 
 using namespace weft;
 using namespace weft::test;
@@ -43,7 +44,7 @@ RoundTrip plain(Coord dims, RawType type, ByteOrder order = ByteOrder::Little) {
 RoundTrip gzipped(Coord dims, RawType type, ByteOrder order = ByteOrder::Little) { return {dims, type, order, true, ""}; }
 
 // Converts the sample pattern with the binary and returns the grid it wrote.
-openvdb::FloatGrid::Ptr convertPattern(const TempDir& dir, const RoundTrip& t, std::vector<float>& values) {
+openvdb::FloatGrid::Ptr convertPattern(const TempDir& dir, const RoundTrip& t, std::vector<double>& values) {
     values = samplePattern(t.dims, t.type);
     const std::string bytes = encodeSamples(values, t.type, t.order);
     const fs::path in = dir / (t.gzip ? "in.raw.gz" : "in.raw");
@@ -60,7 +61,7 @@ openvdb::FloatGrid::Ptr convertPattern(const TempDir& dir, const RoundTrip& t, s
 
 void expectRoundTrip(const RoundTrip& t) {
     TempDir dir;
-    std::vector<float> values;
+    std::vector<double> values;
     const auto grid = convertPattern(dir, t, values);
     ASSERT_TRUE(grid);
     EXPECT_EQ(grid->getName(), "density");
@@ -111,7 +112,7 @@ TEST(ConvertCli, RoundTripGzipU16BigEndian) { expectRoundTrip(gzipped(Coord(20, 
 
 TEST(ConvertCli, SpacingAndGridName) {
     TempDir dir;
-    std::vector<float> values;
+    std::vector<double> values;
     const auto grid = convertPattern(dir, {Coord(6, 6, 6), RawType::U8, ByteOrder::Little, false,
                                            "--spacing 0.5,0.25,2 --grid ct"}, values);
     ASSERT_TRUE(grid);
@@ -123,7 +124,7 @@ TEST(ConvertCli, SpacingAndGridName) {
 
 TEST(ConvertCli, UniformSpacing) {
     TempDir dir;
-    std::vector<float> values;
+    std::vector<double> values;
     const auto grid = convertPattern(dir, {Coord(4, 4, 4), RawType::U8, ByteOrder::Little, false, "--spacing 0.1,0.1,0.1"}, values);
     ASSERT_TRUE(grid);
     EXPECT_TRUE(grid->transform().voxelSize().eq(openvdb::Vec3d(0.1, 0.1, 0.1)));
@@ -190,7 +191,7 @@ TEST_F(ConvertError, GzipSizeMismatch) {
 }
 
 TEST_F(ConvertError, CorruptGzip) {
-    const std::vector<float> values = samplePattern(Coord(32, 32, 32), RawType::U8);
+    const std::vector<double> values = samplePattern(Coord(32, 32, 32), RawType::U8);
     writeGzip(dir / "good.raw.gz", encodeSamples(values, RawType::U8, ByteOrder::Little));
     const std::string good = readBytes(dir / "good.raw.gz");
     writeBinary(dir / "notgz.raw.gz", std::string(32768, '\1'));
@@ -225,7 +226,8 @@ TEST_F(ConvertError, AbsurdSizes) {
 
 TEST_F(ConvertError, UnknownTypeAndByteOrder) {
     writeBinary(dir / "v.raw", std::string(8, '\1'));
-    expectFailure(in("v.raw") + " --dims 2,2,2 --type u32", "--type 'u32': unknown sample type (expected u8|u16|f32)");
+    expectFailure(in("v.raw") + " --dims 2,2,2 --type u64",
+                  "--type 'u64': unknown sample type (expected u8|i8|u16|i16|u32|i32|f32|f64)");
     expectFailure(in("v.raw") + " --dims 2,2,2 --type u8 --endian middle", "--endian 'middle': unknown byte order");
 }
 
@@ -251,6 +253,77 @@ TEST_F(ConvertError, NonFiniteFloat) {
 TEST_F(ConvertError, EmptyGridName) {
     writeBinary(dir / "v.raw", std::string(8, '\1'));
     expectFailure(in("v.raw") + " --dims 2,2,2 --type u8 --grid ''", "grid name must not be empty");
+}
+
+TEST(ConvertCli, EverySampleTypeWithItsExtremes) {
+    for (RawType type : kAllRawTypes) {
+        SCOPED_TRACE(rawTypeName(type));
+        expectRoundTrip(plain(Coord(7, 5, 3), type, ByteOrder::Big));
+    }
+}
+
+// CT in Hounsfield units: air (-1000) is the inactive background, water (0)
+// a value like any other, and the scanner's geometry places the voxels.
+TEST(ConvertCli, HounsfieldVolumeWithBackgroundOriginAndDirection) {
+    TempDir dir;
+    std::vector<double> values(4 * 4 * 2, -1000.0);
+    values[voxelIndex(Coord(4, 4, 2), 1, 2, 1)] = 0;
+    values[voxelIndex(Coord(4, 4, 2), 3, 0, 0)] = -32768;
+    values[voxelIndex(Coord(4, 4, 2), 0, 3, 1)] = 3071;
+    writeBinary(dir / "ct.raw", encodeSamples(values, RawType::I16, ByteOrder::Little));
+    const std::string out = (dir / "ct.vdb").string();
+    const CommandResult r = runWeft("convert " + (dir / "ct.raw").string() +
+                                    " --dims 4,4,2 --type i16 --background -1000 --spacing 0.5,0.5,2 --origin -100,-50,10"
+                                    " --direction 0,-1,0,1,0,0,0,0,1 -o " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("3 active voxels, values -32768..3071"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("background -1000"), std::string::npos) << r.output;
+    const auto grid = readFloatGrid(out, "density");
+    expectGridHolds(*grid, Coord(4, 4, 2), values, -1000.0f);
+    // x steps along world +y, y along world -x.
+    EXPECT_TRUE(grid->transform().indexToWorld(Coord(1, 2, 1)).eq(openvdb::Vec3d(-101, -49.5, 12)))
+        << grid->transform().indexToWorld(Coord(1, 2, 1));
+}
+
+TEST(ConvertCli, SelfDescribingFormats) {
+    TempDir dir;
+    const Coord dims(6, 5, 4);
+    const auto values = samplePattern(dims, RawType::I16);
+    const std::string little = encodeSamples(values, RawType::I16, ByteOrder::Little);
+    const std::string big = encodeSamples(values, RawType::I16, ByteOrder::Big);
+    writeBinary(dir / "a.nrrd", nrrdHeader(nrrdFields("short", dims, "little", "gzip") + "spacings: 1 1 2\n") + gzipBytes(little));
+    writeBinary(dir / "b.raw", big);
+    writeText(dir / "b.nhdr", nrrdHeader(nrrdFields("int16", dims, "big") + "data file: b.raw\n", false));
+    writeBinary(dir / "c.npy", npyFile(npyDict("<i2", false, "(4, 5, 6)"), little));
+    writeBinary(dir / "d.vtk", vtkHeader("BINARY", dims, "short") + big + "\n");
+    for (const char* name : {"a.nrrd", "b.nhdr", "c.npy", "d.vtk"}) {
+        SCOPED_TRACE(name);
+        const std::string out = (dir / "out.vdb").string();
+        const CommandResult r = runWeft("convert " + (dir / name).string() + " --grid ct -o " + out);
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_NE(r.output.find("6x5x4 i16"), std::string::npos) << r.output;
+        expectGridHolds(*readFloatGrid(out, "ct"), dims, values);
+    }
+}
+
+TEST_F(ConvertError, HeaderContradictedOrBroken) {
+    const auto values = samplePattern(Coord(2, 2, 2), RawType::U8);
+    writeBinary(dir / "v.nrrd", nrrdHeader(nrrdFields("uchar", Coord(2, 2, 2))) + encodeSamples(values, RawType::U8, ByteOrder::Little));
+    expectFailure(in("v.nrrd") + " --dims 2,2,3", "--dims '2,2,3' contradicts the header of " + in("v.nrrd") + " (sizes 2,2,2)");
+    expectFailure(in("v.nrrd") + " --type i8", "--type 'i8' contradicts the header");
+    writeBinary(dir / "b.nrrd", nrrdHeader(nrrdFields("uchar", Coord(2, 2, 2), "little", "bzip2")) + std::string(8, '\1'));
+    expectFailure(in("b.nrrd"), "b.nrrd: NRRD field 'encoding' 'bzip2': not supported");
+    writeBinary(dir / "v.raw", std::string(8, '\1'));
+    expectFailure(in("v.raw"), "a headerless volume needs --dims and --type");
+    expectFailure(in("v.raw") + " --dims 2,2,2 --type u8 --direction 1,0,0,0,1,0,0,0,0", "--direction '1,0,0,0,1,0,0,0,0': the direction matrix is singular");
+    expectFailure(in("v.raw") + " --dims 2,2,2 --type u8 --origin 1,2", "--origin '1,2': expected 3 finite numbers");
+    expectFailure(in("v.raw") + " --dims 2,2,2 --type u8 --background nan", "--background 'nan': expected a finite number");
+}
+
+TEST(ConvertCli, HelpListsTypesOptionsAndFormats) {
+    const CommandResult r = runWeft("convert --help");
+    for (const char* s : {"u8|i8|u16|i16|u32|i32|f32|f64", "--origin", "--direction", "--background", ".nrrd", ".nhdr", ".npy", ".vtk"})
+        EXPECT_NE(r.output.find(s), std::string::npos) << s << " in " << r.output;
 }
 
 TEST(ConvertCli, Aneurism) {
