@@ -244,12 +244,17 @@ openvdb::FloatGrid::Ptr buildGrid(const RawVolumeSpec& spec, const SlabFill& fil
     return grid;
 }
 
-void checkSourceSize(const RawDataSource& src, const RawVolumeSpec& spec, std::uint64_t needed) {
+// Bytes the file holds after its header.
+std::uint64_t bytesAfterHeader(const RawDataSource& src) {
     std::error_code ec;
     const std::uint64_t size = fs::file_size(src.path, ec);
     if (ec) throw Error(src.path + ": cannot read its size: " + ec.message());
     if (size < src.offset) throw Error(src.path + ": the file ends inside its " + std::to_string(src.offset) + "-byte header");
-    const std::uint64_t held = size - src.offset;
+    return size - src.offset;
+}
+
+void checkSourceSize(const RawDataSource& src, const RawVolumeSpec& spec, std::uint64_t needed) {
+    const std::uint64_t held = bytesAfterHeader(src);
     if (held < needed || (held > needed && !src.trailingAllowed)) throw sizeMismatch(src, held, spec);
 }
 
@@ -257,11 +262,7 @@ void checkSourceSize(const RawDataSource& src, const RawVolumeSpec& spec, std::u
 // allocated: deflate packs at most 1032 bytes into one, and a sample written
 // as text takes at least two bytes (a digit and a separator).
 void checkPackedSize(const RawDataSource& src, const RawVolumeSpec& spec, std::uint64_t needed) {
-    std::error_code ec;
-    const std::uint64_t size = fs::file_size(src.path, ec);
-    if (ec) throw Error(src.path + ": cannot read its size: " + ec.message());
-    if (size < src.offset) throw Error(src.path + ": the file ends inside its " + std::to_string(src.offset) + "-byte header");
-    const std::uint64_t held = size - src.offset;
+    const std::uint64_t held = bytesAfterHeader(src);
     const std::string after = src.offset > 0 ? " after its " + std::to_string(src.offset) + "-byte header" : "";
     if (src.encoding == SampleEncoding::Gzip && (needed + src.skipDecoded) / 1032 > held + 64)
         throw Error(src.path + ": " + std::to_string(held) + " bytes of gzip data" + after + " cannot unpack to the " +

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/base/error.hpp"
+
 namespace weft::test {
 
 struct CommandResult {
@@ -30,5 +32,16 @@ void writeText(const std::filesystem::path& path, const std::string& text);
 std::string readBytes(const std::filesystem::path& path);
 // The shared datasets folder next to the project (../shared/data), or "" if absent.
 std::string sharedDataDir();
+
+// The message of the weft::Error that f() throws, "" when it throws none.
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
 
 }  // namespace weft::test

@@ -14,15 +14,6 @@ using openvdb::Coord;
 
 namespace {
 
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 RawVolumeSpec specOf(Coord dims, RawType type, ByteOrder order = ByteOrder::Little) {
     RawVolumeSpec spec;

@@ -23,15 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 openvdb::FloatGrid::Ptr importGrid(const fs::path& path, const ImportOptions& options = {}) {
     const VolumeImport im = planImport(path.string(), options);
