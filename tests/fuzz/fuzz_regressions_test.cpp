@@ -74,7 +74,7 @@ TEST(FuzzTargets, ObjAndPly) {
     expectAccepted(feed(objFile, "mtllib fuzz.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl m\nf 1 2 3 4\n"
                                  "#MTL\nnewmtl m\nKd 0.2 0.4 0.6\n"));
     expectRefused(feed(objFile, "v 0 0 0\nv 1 0 0\nf 1 2 9\n"));
-    expectRefused(feed(objFile, "v 0 0 inf\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    expectRefused(feed(objFile, "v 0 0 1e39\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));  // overflows to inf
     const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                                "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
     expectAccepted(feed(plyFile, header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
