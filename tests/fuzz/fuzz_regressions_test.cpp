@@ -164,5 +164,25 @@ TEST(FuzzRegressions, SceneDictionaryHasEveryKey) {
 
 // ---- findings of the fuzz campaigns ------------------------------------------
 
+Outcome frameNameInput(char frameIndex, const std::string& name) {
+    return feed(textParsers, std::string{char(1), frameIndex} + name);
+}
+
+// Sixteen '#' are 64 digits; the name was cut to 63 in a fixed buffer.
+TEST(FuzzRegressions, SixteenHashesExpandToSixtyFourDigits) {
+    expectAccepted(frameNameInput(1, "f." + std::string(16, '#') + ".exr"));  // checked by the target
+    expectAccepted(frameNameInput(4, std::string(40, '#')));
+    EXPECT_EQ(expandFrameName(std::string(16, '#'), -5), "-" + std::string(62, '0') + "5");  // the sign counts in the width
+}
+
+// "%<digits>d" with more digits than an int holds overflowed while reading
+// the width (UBSan: signed integer overflow); such a width is no wildcard.
+TEST(FuzzRegressions, HugePrintfWidthIsNoWildcard) {
+    expectAccepted(frameNameInput(0, "f.%99999999999999999999d.exr"));
+    EXPECT_FALSE(hasFrameWildcard("f.%99999999999999999999d.exr"));
+    EXPECT_EQ(expandFrameName("f.%99999999999999999999d.#.exr", 5), "f.%99999999999999999999d.0005.exr");
+    EXPECT_EQ(expandFrameName("f.%032d.exr", 5), "f." + std::string(31, '0') + "5.exr");
+}
+
 }  // namespace
 }  // namespace weft::fuzz
