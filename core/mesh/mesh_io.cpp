@@ -97,7 +97,9 @@ void checkPlyHeader(const std::string& path) {
 PolyMesh readPly(const std::string& path) {
     checkPlyHeader(path);
     Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
+    // Validation runs before the other steps: joining vertices indexes them by
+    // the file's face indices unchecked, and crashed on one out of range.
+    const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_JoinIdenticalVertices);
     if (!scene) fail(path, oneLine(importer.GetErrorString()));
     PolyMesh out;
     out.materials.emplace_back();
