@@ -7,9 +7,12 @@
 #include <assimp/scene.h>
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <vector>
 
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
@@ -84,13 +87,38 @@ PolyMesh readObj(const std::string& path) {
     return out;
 }
 
-// Assimp spins on a header cut short: the header must be whole before it reads.
+bool isPlyType(const std::string& t) {
+    static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double",
+                                         "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
+    return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
+}
+
+// One header line against the PLY grammar ("element NAME COUNT",
+// "property TYPE NAME", "property list TYPE TYPE NAME", ...).
+bool plyHeaderLineOk(const std::string& line) {
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string word; words >> word;) w.push_back(word);
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") return true;
+    if (w[0] == "format") return w.size() == 3 && (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian");
+    if (w[0] == "element") return w.size() == 3 && w[2].find_first_not_of("0123456789") == std::string::npos;
+    if (w[0] == "property" && w.size() == 3) return isPlyType(w[1]);
+    if (w[0] == "property" && w.size() == 5) return w[1] == "list" && isPlyType(w[2]) && isPlyType(w[3]);
+    return false;
+}
+
+// Assimp spins on a header cut short and crashes on a malformed property
+// declaration: the header must be whole and well formed before it reads.
 void checkPlyHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     if (!std::getline(in, line) || line.rfind("ply", 0) != 0) fail(path, "is not a PLY file (no 'ply' on its first line)");
-    for (int n = 0; n < 10000 && std::getline(in, line); ++n)
-        if (line.rfind("end_header", 0) == 0) return;
+    for (int n = 0; n < 10000 && std::getline(in, line); ++n) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line == "end_header") return;
+        if (in.eof()) break;  // a last line without its newline: the file is cut short
+        if (!plyHeaderLineOk(line)) fail(path, "PLY header line " + std::to_string(n + 2) + " is malformed");
+    }
     fail(path, "its PLY header has no end_header line (the file is cut short or not PLY)");
 }
 
