@@ -216,5 +216,13 @@ TEST(FuzzRegressions, HugePrintfWidthIsNoWildcard) {
     EXPECT_EQ(expandFrameName("f.%032d.exr", 5), "f." + std::string(31, '0') + "5.exr");
 }
 
+// "property list uchar ply" (no value type, no name) and an "end_header"
+// with text after it crashed inside Assimp's PLY parser.
+TEST(FuzzRegressions, MalformedPlyPropertyIsRefusedBeforeAssimp) {
+    const Outcome o = feed(plyFile, regressionFile("ply", "list-property-without-name.ply"));
+    expectRefused(o);
+    EXPECT_NE(o.message.find("PLY header line 9 is malformed"), std::string::npos) << o.message;
+}
+
 }  // namespace
 }  // namespace weft::fuzz
