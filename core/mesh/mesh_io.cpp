@@ -95,13 +95,17 @@ bool isPlyType(const std::string& t) {
 
 // One header line against the PLY grammar ("element NAME COUNT",
 // "property TYPE NAME", "property list TYPE TYPE NAME", ...).
-bool plyHeaderLineOk(const std::string& line) {
+bool plyHeaderLineOk(const std::string& line, std::uintmax_t fileBytes) {
     std::istringstream words(line);
     std::vector<std::string> w;
     for (std::string word; words >> word;) w.push_back(word);
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") return true;
     if (w[0] == "format") return w.size() == 3 && (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian");
-    if (w[0] == "element") return w.size() == 3 && w[2].find_first_not_of("0123456789") == std::string::npos;
+    // Every element takes at least a byte of the file: a larger count is
+    // corrupt, and Assimp would allocate it before reading a byte.
+    if (w[0] == "element")
+        return w.size() == 3 && w[2].size() <= 19 && w[2].find_first_not_of("0123456789") == std::string::npos &&
+               std::stoull(w[2]) <= fileBytes;
     if (w[0] == "property" && w.size() == 3) return isPlyType(w[1]);
     if (w[0] == "property" && w.size() == 5) return w[1] == "list" && isPlyType(w[2]) && isPlyType(w[3]);
     return false;
@@ -117,7 +121,7 @@ void checkPlyHeader(const std::string& path) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (line == "end_header") return;
         if (in.eof()) break;  // a last line without its newline: the file is cut short
-        if (!plyHeaderLineOk(line)) fail(path, "PLY header line " + std::to_string(n + 2) + " is malformed");
+        if (!plyHeaderLineOk(line, fs::file_size(path))) fail(path, "PLY header line " + std::to_string(n + 2) + " is malformed");
     }
     fail(path, "its PLY header has no end_header line (the file is cut short or not PLY)");
 }
