@@ -96,7 +96,9 @@ Wildcard findWildcard(const std::string& name) {
     while (pct != std::string::npos) {
         std::size_t p = pct + 1;
         int width = 0;
-        while (p < name.size() && std::isdigit(static_cast<unsigned char>(name[p]))) width = width * 10 + (name[p++] - '0');
+        // Past 32 the width is refused anyway: stop adding digits before int overflows.
+        for (; p < name.size() && std::isdigit(static_cast<unsigned char>(name[p])); ++p)
+            if (width <= 32) width = width * 10 + (name[p] - '0');
         if (p < name.size() && name[p] == 'd' && width <= 32) break;
         pct = name.find('%', pct + 1);
     }
@@ -122,8 +124,9 @@ bool hasFrameWildcard(const std::string& name) { return findWildcard(name).pos !
 std::string expandFrameName(const std::string& name, int frame) {
     const Wildcard w = findWildcard(name);
     if (w.pos == std::string::npos) return name;
-    char digits[64];
-    std::snprintf(digits, sizeof digits, "%0*d", w.width, frame);
+    // Sixteen or more '#' ask for 64 digits or more: size the text to fit.
+    std::string digits(std::size_t(w.width) + 16, '\0');
+    digits.resize(std::size_t(std::snprintf(digits.data(), digits.size(), "%0*d", w.width, frame)));
     return name.substr(0, w.pos) + digits + name.substr(w.pos + w.length);
 }
 

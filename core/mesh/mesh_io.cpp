@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <vector>
 
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
@@ -113,20 +115,51 @@ PolyMesh readObj(const std::string& path) {
     return out;
 }
 
-// Assimp spins on a header cut short: the header must be whole before it reads.
+bool isPlyType(const std::string& t) {
+    static const char* const kTypes[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double",
+                                         "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
+    return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
+}
+
+// One header line against the PLY grammar ("element NAME COUNT",
+// "property TYPE NAME", "property list TYPE TYPE NAME", ...).
+bool plyHeaderLineOk(const std::string& line, std::uintmax_t fileBytes) {
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string word; words >> word;) w.push_back(word);
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") return true;
+    if (w[0] == "format") return w.size() == 3 && (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian");
+    // Every element takes at least a byte of the file: a larger count is
+    // corrupt, and Assimp would allocate it before reading a byte.
+    if (w[0] == "element")
+        return w.size() == 3 && w[2].size() <= 19 && w[2].find_first_not_of("0123456789") == std::string::npos &&
+               std::stoull(w[2]) <= fileBytes;
+    if (w[0] == "property" && w.size() == 3) return isPlyType(w[1]);
+    if (w[0] == "property" && w.size() == 5) return w[1] == "list" && isPlyType(w[2]) && isPlyType(w[3]);
+    return false;
+}
+
+// Assimp spins on a header cut short and crashes on a malformed property
+// declaration: the header must be whole and well formed before it reads.
 void checkPlyHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     if (!std::getline(in, line) || line.rfind("ply", 0) != 0) fail(path, "is not a PLY file (no 'ply' on its first line)");
-    for (int n = 0; n < 10000 && std::getline(in, line); ++n)
-        if (line.rfind("end_header", 0) == 0) return;
+    for (int n = 0; n < 10000 && std::getline(in, line); ++n) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line == "end_header") return;
+        if (in.eof()) break;  // a last line without its newline: the file is cut short
+        if (!plyHeaderLineOk(line, fs::file_size(path))) fail(path, "PLY header line " + std::to_string(n + 2) + " is malformed");
+    }
     fail(path, "its PLY header has no end_header line (the file is cut short or not PLY)");
 }
 
 PolyMesh readPly(const std::string& path) {
     checkPlyHeader(path);
     Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
+    // Validation runs before the other steps: joining vertices indexes them by
+    // the file's face indices unchecked, and crashed on one out of range.
+    const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_JoinIdenticalVertices);
     if (!scene) fail(path, oneLine(importer.GetErrorString()));
     PolyMesh out;
     out.materials.emplace_back();

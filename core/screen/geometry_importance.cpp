@@ -69,9 +69,16 @@ inline __attribute__((always_inline)) void accumulateOffset(const Planes& g, int
     }
 }
 
-// Cloned for AVX-512 and for AVX2 + FMA, picked at load time by what the CPU has.
+// Cloned for AVX-512 and for AVX2 + FMA, picked at load time by what the CPU
+// has. clang (14) cannot clone function templates: its builds (the sanitized
+// one) take the default code path.
+#if defined(__clang__)
+#define WEFT_ROW_CLONES
+#else
+#define WEFT_ROW_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
 template <bool UseN, bool UseP>
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void importanceRow(const Planes& g, int width, int height, const Window& win, int y, float* acc, float* out) {
+WEFT_ROW_CLONES void importanceRow(const Planes& g, int width, int height, const Window& win, int y, float* acc, float* out) {
     std::fill(acc, acc + width, 1.0f);  // the pixel itself
     for (int dy = win.lo; dy <= win.hi; ++dy) {
         if (y + dy < 0 || y + dy >= height) continue;

@@ -1,0 +1,28 @@
+# Sanitized builds (scripts/test-sanitize.sh, scripts/fuzz.sh; both use
+# build-sanitize/). Off by default: the gcc build is unaffected.
+#   WEFT_SANITIZE  AddressSanitizer + UndefinedBehaviorSanitizer over all of
+#                  weft; a UBSan report aborts (-fno-sanitize-recover), so it
+#                  fails the test that triggered it.
+#   WEFT_FUZZ      also libFuzzer's coverage instrumentation, and the fuzz
+#                  targets of tests/fuzz. The instrumentation needs no
+#                  runtime beyond the sanitizers', so the test suite built
+#                  this way runs as well: one clang build serves both.
+# Debian's libraries (OpenVDB, TBB, Embree, OIIO...) are not instrumented;
+# ASan still sees their heap through its malloc.
+option(WEFT_SANITIZE "Build with AddressSanitizer and UndefinedBehaviorSanitizer (clang)" OFF)
+option(WEFT_FUZZ "Build the libFuzzer targets of tests/fuzz (clang; implies WEFT_SANITIZE)" OFF)
+if(WEFT_FUZZ)
+  set(WEFT_SANITIZE ON)
+endif()
+if(WEFT_SANITIZE)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "WEFT_SANITIZE/WEFT_FUZZ need clang (configure with -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang)")
+  endif()
+  set(WEFT_SANITIZE_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  # Reports inside Debian's library headers, one entry each with why.
+  add_compile_options(${WEFT_SANITIZE_FLAGS} -fsanitize-ignorelist=${CMAKE_SOURCE_DIR}/scripts/sanitizers/ubsan-ignorelist.txt)
+  add_link_options(${WEFT_SANITIZE_FLAGS})
+endif()
+if(WEFT_FUZZ)
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()

@@ -1,0 +1,31 @@
+#pragma once
+// Fuzz target: EXR files as `weft diff`, `weft merge` and `weft filter`
+// read them (core/image/image_io.cpp through the OpenImageIO module), then
+// what each command does next with the image: the comparison metrics, the
+// tile checks of a merge and the A-Trous filter's channel lookup.
+#include "core/image/image_compare.hpp"
+#include "core/image/image_io.hpp"
+#include "core/screen/atrous.hpp"
+#include "plugins/host/tile_merge.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
+
+namespace weft::fuzz {
+
+inline Outcome exrFile(const std::uint8_t* data, std::size_t size) {
+    const std::string path = writeScratch("image.exr", asText(data, size));
+    const Outcome read = guarded([&] {
+        Metadata metadata;
+        ImageWindow window;
+        Image image = readImage(path, &metadata, &window);
+        require(image.data().size() == std::size_t(image.width()) * image.height() * image.channelCount(),
+                "pixel count matches the size");
+        if (image.channelCount() > 0 && image.width() > 0 && image.height() > 0) compareImages(image, image);
+        AtrousSettings settings;
+        settings.levels = 2;
+        atrousFilterImage(image, "", "N", "P", settings);
+    });
+    const Outcome merged = guarded([&] { mergeTiles({path}); });
+    return merged.accepted ? merged : read;
+}
+
+}  // namespace weft::fuzz

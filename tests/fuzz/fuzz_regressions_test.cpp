@@ -1,0 +1,228 @@
+// The fuzz targets (tests/fuzz/*_target.hpp) in the default suite: each
+// target accepts a well-formed input and refuses a broken one with a
+// weft::Error, the scene dictionary names every key the loader accepts, and
+// every crash or hang the fuzzers found is fed through the same function
+// here, asserting a clean refusal or a correct result.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/base/json_doc.hpp"
+#include "core/image/image_io.hpp"
+#include "tests/fuzz/exr_target.hpp"
+#include "tests/fuzz/mesh_target.hpp"
+#include "tests/fuzz/raw_target.hpp"
+#include "tests/fuzz/scene_json_target.hpp"
+#include "tests/fuzz/text_parsers_target.hpp"
+#include "tests/fuzz/vdb_target.hpp"
+#include "tests/support/vdb_fixtures.hpp"
+
+namespace weft::fuzz {
+namespace {
+
+using Target = Outcome (*)(const std::uint8_t*, std::size_t);
+
+Outcome feed(Target target, const std::string& bytes) {
+    return target(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+}
+
+std::string slurp(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A refusal is one non-empty line.
+void expectRefused(const Outcome& o) {
+    EXPECT_FALSE(o.accepted);
+    EXPECT_FALSE(o.skipped);
+    EXPECT_FALSE(o.message.empty());
+    EXPECT_EQ(o.message.find('\n'), std::string::npos) << o.message;
+}
+
+void expectAccepted(const Outcome& o) {
+    EXPECT_TRUE(o.accepted) << o.message;
+    EXPECT_FALSE(o.skipped);
+}
+
+// ---- each target accepts what is well formed, refuses what is not ----------
+
+TEST(FuzzTargets, SceneJson) {
+    expectAccepted(feed(sceneJson, R"({"volumes": [{"procedural": "sphere", "resolution": 8}],
+        "render": {"technique": "volume.raymarch", "res": [16, 16], "set": {"step": 0.5}}})"));
+    expectAccepted(feed(sceneJson, R"({"volumes": [{"file": "fuzz.vdb"}], "meshes": [{"file": "fuzz.obj", "subdivision": 1}],
+        "render": {"technique": "mesh.pathtrace"}})"));
+    expectRefused(feed(sceneJson, R"({"volumes": [{"file": "fuzz.vdb"}], "render": {"technique": "volume.raymarch", "set": {"nope": 1}}})"));
+    expectRefused(feed(sceneJson, "{\"camera\": "));
+    EXPECT_TRUE(feed(sceneJson, R"({"volumes": [{"procedural": "cloud", "resolution": 1024}]})").skipped);
+}
+
+TEST(FuzzTargets, VdbFile) {
+    const auto path = scratchDir() / "seed_sphere.vdb";
+    test::writeProceduralVdb(path, "sphere", 8);
+    const std::string bytes = slurp(path);
+    expectAccepted(feed(vdbFile, bytes));
+    expectRefused(feed(vdbFile, bytes.substr(0, bytes.size() / 2)));
+    expectRefused(feed(vdbFile, "not a vdb"));
+}
+
+TEST(FuzzTargets, ObjAndPly) {
+    expectAccepted(feed(objFile, "mtllib fuzz.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl m\nf 1 2 3 4\n"
+                                 "#MTL\nnewmtl m\nKd 0.2 0.4 0.6\n"));
+    expectRefused(feed(objFile, "v 0 0 0\nv 1 0 0\nf 1 2 9\n"));
+    expectRefused(feed(objFile, "v 0 0 1e39\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));  // overflows to inf
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    expectAccepted(feed(plyFile, header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    expectRefused(feed(plyFile, header.substr(0, 40)));
+}
+
+TEST(FuzzTargets, RawVolume) {
+    const std::string header{char(0), char(0), char(0), char(3), char(3)};  // u8, little, plain, 4 x 4
+    expectAccepted(feed(rawVolume, header + char(0) + std::string(64, '\7')));
+    expectRefused(feed(rawVolume, header + char(0) + std::string(63, '\7')));                  // 63 bytes: not 4x4xZ
+    expectRefused(feed(rawVolume, std::string{char(0), char(0), char(1), char(3), char(3), char(3)} + "not gzip"));
+    expectRefused(feed(rawVolume, std::string{char(8), char(0), char(0), char(0), char(0), char(0), char(1)}));  // type "x"
+}
+
+TEST(FuzzTargets, ExrFile) {
+    Image img(4, 4, {"R", "G", "B", "A"});
+    const auto path = scratchDir() / "seed_tile.exr";
+    writeExr(img, path.string(), {{"weft:tile", "1/1"}, {"weft:tile:full_resolution", "4x4"}, {"weft:complete", "1"}},
+             ImageWindow{0, 0, 4, 4});
+    const std::string bytes = slurp(path);
+    expectAccepted(feed(exrFile, bytes));
+    expectRefused(feed(exrFile, bytes.substr(0, bytes.size() - 20)));
+    expectRefused(feed(exrFile, "not an exr"));
+}
+
+TEST(FuzzTargets, TextParsers) {
+    const auto text = [](int parser, const std::string& s) { return feed(textParsers, std::string(1, char(parser)) + s); };
+    expectAccepted(text(0, "1001-1100x2"));
+    expectRefused(text(0, "3,3"));
+    expectAccepted(text(1, std::string(1, '\1') + "f.#.exr"));  // frame 7 -> f.0007.exr, checked by the target
+    expectAccepted(text(2, "3/4"));
+    expectRefused(text(2, "5/4"));
+    expectAccepted(text(3, "640x480"));
+    expectRefused(text(3, "0x480"));
+    expectAccepted(text(4, "resolution 32x32\nframes 1-3\noutput o.#.exr\ntile 1/2"));
+    expectRefused(text(4, "frames 1-3\noutput o.exr"));  // three frames into one file
+    expectRefused(text(5, std::string(1, '\0') + "no_such_parameter=1"));
+    expectAccepted(text(6, "4,4,4\n1,1,2"));
+    expectRefused(text(6, "4,4\n1,1,2"));
+}
+
+// ---- the scene dictionary ----------------------------------------------------
+
+std::set<std::string> dictionaryKeys() {
+    std::ifstream in(std::string(WEFT_SOURCE_DIR) + "/tests/fuzz/scene.dict");
+    std::set<std::string> keys;
+    const std::regex entry(R"re(^key_\w+="\\"([^\\]+)\\":"$)re");
+    std::smatch m;
+    for (std::string line; std::getline(in, line);)
+        if (std::regex_match(line, m, entry)) keys.insert(m[1]);
+    return keys;
+}
+
+// The keys an object of the scene accepts, from the loader's own message
+// for an unknown key ("...; valid keys: a, b, c").
+std::vector<std::string> keysListedFor(const std::string& scene) {
+    const Outcome o = feed(sceneJson, scene);
+    EXPECT_FALSE(o.accepted) << scene;
+    const std::size_t at = o.message.find("valid keys: ");
+    EXPECT_NE(at, std::string::npos) << o.message;
+    std::vector<std::string> keys;
+    std::stringstream list(o.message.substr(at + 12));
+    for (std::string k; std::getline(list, k, ',');) keys.push_back(k.substr(k.find_first_not_of(' ')));
+    return keys;
+}
+
+TEST(FuzzRegressions, SceneDictionaryHasEveryKey) {
+    const std::set<std::string> dict = dictionaryKeys();
+    const std::string sphere = R"("procedural": "sphere", "resolution": 4)";
+    for (const std::string& scene :
+         {std::string(R"({"zzz": 1})"), std::string(R"({"volumes": [{"zzz": 1}]})"), std::string(R"({"meshes": [{"zzz": 1}]})"),
+          std::string(R"({"lights": [{"zzz": 1}]})"), std::string(R"({"camera": {"zzz": 1}})"),
+          std::string(R"({"camera": {"keys": [{"zzz": 1}]}})"), R"({"volumes": [{)" + sphere + R"(, "medium": {"zzz": 1}}]})",
+          R"({"volumes": [{)" + sphere + R"(, "transfer_function": {"zzz": 1}}]})",
+          R"({"volumes": [{)" + sphere + R"(, "transfer_function": {"points": [{"zzz": 1}]}}]})",
+          std::string(R"({"render": {"zzz": 1}})")}) {
+        const std::vector<std::string> keys = keysListedFor(scene);
+        EXPECT_FALSE(keys.empty()) << scene;
+        for (const std::string& k : keys) EXPECT_TRUE(dict.count(k)) << "tests/fuzz/scene.dict lacks \"" << k << "\" (" << scene << ")";
+    }
+    for (const RenderOption& o : renderOptions()) {
+        if (!(o.places & kInScene)) continue;
+        EXPECT_TRUE(dict.count(o.spec.name)) << o.spec.name;
+        for (const std::string& alias : o.aliases) EXPECT_TRUE(dict.count(alias)) << alias;
+    }
+}
+
+// ---- findings of the fuzz campaigns ------------------------------------------
+
+// tests/fuzz/regressions/<target>/: inputs the fuzzers found that crashed or
+// hung. Each must now be refused with one line, or accepted.
+std::string regressionFile(const std::string& target, const std::string& name) {
+    return slurp(std::filesystem::path(WEFT_SOURCE_DIR) / "tests/fuzz/regressions" / target / name);
+}
+
+TEST(FuzzRegressions, EveryStoredFindingIsHandled) {
+    const std::map<std::string, Target> targets{{"scene_json", sceneJson}, {"vdb", vdbFile}, {"obj", objFile}, {"ply", plyFile},
+                                                {"raw", rawVolume},        {"exr", exrFile}, {"text", textParsers}};
+    int cases = 0;
+    for (const auto& [name, target] : targets) {
+        const auto dir = std::filesystem::path(WEFT_SOURCE_DIR) / "tests/fuzz/regressions" / name;
+        if (!std::filesystem::is_directory(dir)) continue;
+        for (const auto& e : std::filesystem::directory_iterator(dir)) {
+            SCOPED_TRACE(e.path().string());
+            const Outcome o = feed(target, slurp(e.path()));
+            if (!o.accepted && !o.skipped) expectRefused(o);
+            ++cases;
+        }
+    }
+    EXPECT_GE(cases, 1);
+}
+
+// A binary PLY whose face indices lie far beyond its 4 vertices crashed
+// inside Assimp's vertex joining, which ran before weft checked them.
+TEST(FuzzRegressions, PlyFaceIndexOutOfRangeIsRefused) {
+    const Outcome o = feed(plyFile, regressionFile("ply", "face-index-out-of-range-be.ply"));
+    expectRefused(o);
+    EXPECT_NE(o.message.find("mesh.ply"), std::string::npos) << o.message;
+}
+
+Outcome frameNameInput(char frameIndex, const std::string& name) {
+    return feed(textParsers, std::string{char(1), frameIndex} + name);
+}
+
+// Sixteen '#' are 64 digits; the name was cut to 63 in a fixed buffer.
+TEST(FuzzRegressions, SixteenHashesExpandToSixtyFourDigits) {
+    expectAccepted(frameNameInput(1, "f." + std::string(16, '#') + ".exr"));  // checked by the target
+    expectAccepted(frameNameInput(4, std::string(40, '#')));
+    EXPECT_EQ(expandFrameName(std::string(16, '#'), -5), "-" + std::string(62, '0') + "5");  // the sign counts in the width
+}
+
+// "%<digits>d" with more digits than an int holds overflowed while reading
+// the width (UBSan: signed integer overflow); such a width is no wildcard.
+TEST(FuzzRegressions, HugePrintfWidthIsNoWildcard) {
+    expectAccepted(frameNameInput(0, "f.%99999999999999999999d.exr"));
+    EXPECT_FALSE(hasFrameWildcard("f.%99999999999999999999d.exr"));
+    EXPECT_EQ(expandFrameName("f.%99999999999999999999d.#.exr", 5), "f.%99999999999999999999d.0005.exr");
+    EXPECT_EQ(expandFrameName("f.%032d.exr", 5), "f." + std::string(31, '0') + "5.exr");
+}
+
+// "property list uchar ply" (no value type, no name) and an "end_header"
+// with text after it crashed inside Assimp's PLY parser.
+TEST(FuzzRegressions, MalformedPlyPropertyIsRefusedBeforeAssimp) {
+    const Outcome o = feed(plyFile, regressionFile("ply", "list-property-without-name.ply"));
+    expectRefused(o);
+    EXPECT_NE(o.message.find("PLY header line 9 is malformed"), std::string::npos) << o.message;
+}
+
+}  // namespace
+}  // namespace weft::fuzz
