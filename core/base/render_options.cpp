@@ -76,7 +76,7 @@ std::vector<RenderOption> makeTable() {
                        [](RenderRequest& r, const std::string& v) { r.seed = std::uint64_t(std::stoull(v)); }));
     t.push_back(option(intParam("threads", 0, 0, 4096, "worker threads, 0 = all cores (the image does not depend on it)"), "--threads",
                        kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.threads = int(std::stoll(v)); }));
-    t.push_back(option(floatParam("max-memory", 0, 0, 1e6, "refuse renders whose images need more GiB than this (0 = 3/4 of physical memory)"),
+    t.push_back(option(floatParam("max-memory", 0, 0, 1e6, "refuse renders estimated to need more GiB than this: the technique's buffers per pixel and the scene (0 = 3/4 of physical memory)"),
                        "--max-memory", kOnCommandLine | kInBatchJob,
                        [](RenderRequest& r, const std::string& v) { r.maxMemoryGiB = std::stod(v); }));
     t.push_back(option(boolParam("verbose", false, "print the counter table and timings"), "-v,--verbose", kOnCommandLine | kInBatchJob,
