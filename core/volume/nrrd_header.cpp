@@ -67,14 +67,7 @@ Fields readFields(std::string_view bytes, bool wholeFile, const std::string& fil
     blankLine = false;
     while (pos < bytes.size()) {
         ++lineNo;
-        std::size_t eol = bytes.find('\n', pos);
-        if (eol == std::string_view::npos) {
-            if (!wholeFile) throw Error(file + ": NRRD header does not end within " + std::to_string(kMaxHeaderBytes) + " bytes");
-            eol = bytes.size();
-        }
-        std::string_view line = bytes.substr(pos, eol - pos);
-        pos = std::min(eol + 1, bytes.size());
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        const std::string_view line = nextHeaderLine(bytes, pos, wholeFile, file, "NRRD");
         if (line.empty()) {
             blankLine = true;
             break;

@@ -7,6 +7,7 @@
 // bytes to this, so a fuzz target can call them without files.
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "core/volume/raw_volume.hpp"
 
@@ -27,6 +28,13 @@ struct VolumeHeader {
 // No header weft reads is longer: a file that has not finished its header
 // by then is not one.
 inline constexpr std::size_t kMaxHeaderBytes = std::size_t(1) << 20;
+
+// The line of a text header (NRRD, VTK) that starts at `pos`, without its
+// LF or CR LF; `pos` moves to the next line. When only the first
+// kMaxHeaderBytes of the file were read (wholeFile false) and no line end is
+// left, the header is too long: "<file>: <format> header does not end within ...".
+std::string_view nextHeaderLine(std::string_view bytes, std::size_t& pos, bool wholeFile, const std::string& file,
+                                const char* format);
 
 // The header's own size summary for messages: "the header's 5x4x3 i16".
 std::string headerDescription(const RawVolumeSpec& spec);

@@ -18,6 +18,19 @@ namespace fs = std::filesystem;
 
 namespace weft {
 
+std::string_view nextHeaderLine(std::string_view bytes, std::size_t& pos, bool wholeFile, const std::string& file,
+                                const char* format) {
+    std::size_t eol = bytes.find('\n', pos);
+    if (eol == std::string_view::npos) {
+        if (!wholeFile) throw Error(file + ": " + format + " header does not end within " + std::to_string(kMaxHeaderBytes) + " bytes");
+        eol = bytes.size();
+    }
+    std::string_view line = bytes.substr(pos, eol - pos);
+    pos = std::min(eol + 1, bytes.size());
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    return line;
+}
+
 std::string headerDescription(const RawVolumeSpec& spec) {
     return "the header's " + std::to_string(spec.dims.x()) + "x" + std::to_string(spec.dims.y()) + "x" +
            std::to_string(spec.dims.z()) + " " + rawTypeName(spec.type);

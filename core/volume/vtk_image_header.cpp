@@ -18,15 +18,7 @@ public:
 
     std::string_view next() {
         if (pos_ >= s_.size()) throw ended();
-        std::size_t eol = s_.find('\n', pos_);
-        if (eol == std::string_view::npos) {
-            if (!whole_) throw Error(file_ + ": VTK header does not end within " + std::to_string(kMaxHeaderBytes) + " bytes");
-            eol = s_.size();
-        }
-        std::string_view line = s_.substr(pos_, eol - pos_);
-        pos_ = std::min(eol + 1, s_.size());
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        return line;
+        return nextHeaderLine(s_, pos_, whole_, file_, "VTK");
     }
 
     // The next line holding something, split into words.
