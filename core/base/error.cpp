@@ -1,4 +1,5 @@
 #include "core/base/error.hpp"
+#include "core/base/quote_value.hpp"
 
 #include <cstdio>
 
@@ -36,6 +37,12 @@ std::string printableLine(std::string_view text) {
         }
     }
     return out;
+}
+
+std::string quoteValue(std::string_view value) {
+    constexpr std::size_t kShown = 60;
+    if (value.size() <= kShown) return "'" + std::string(value) + "'";
+    return "'" + std::string(value.substr(0, kShown)) + "...' (" + std::to_string(value.size()) + " characters)";
 }
 
 }  // namespace weft

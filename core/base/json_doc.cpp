@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/base/error.hpp"
+#include "core/base/quote_value.hpp"
 
 namespace weft {
 
@@ -36,14 +37,12 @@ struct CountingIterator {
 };
 
 // A quoted token of the input (a number of 400 digits, a long string) is
-// cut to its start and its length, so the line stays readable.
+// shortened as every quoted value in weft's messages is.
 std::string shortenQuoted(const std::string& text) {
-    constexpr std::size_t kKeep = 24;
     const std::size_t open = text.find('\'');
     const std::size_t close = open == std::string::npos ? open : text.rfind('\'');
-    if (open == std::string::npos || close <= open || close - open - 1 <= 2 * kKeep) return text;
-    const std::size_t length = close - open - 1;
-    return text.substr(0, open + 1 + kKeep) + "...' (" + std::to_string(length) + " characters)" + text.substr(close + 1);
+    if (open == std::string::npos || close <= open) return text;
+    return text.substr(0, open) + quoteValue(std::string_view(text).substr(open + 1, close - open - 1)) + text.substr(close + 1);
 }
 
 // nlohmann's message without its "[json.exception.parse_error.101] parse

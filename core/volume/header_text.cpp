@@ -48,12 +48,6 @@ bool endsWithText(std::string_view text, std::string_view suffix) {
     return text.size() >= suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
 }
 
-std::string quoteValue(std::string_view value) {
-    constexpr std::size_t kShown = 60;
-    if (value.size() <= kShown) return "'" + std::string(value) + "'";
-    return "'" + std::string(value.substr(0, kShown)) + "...' (" + std::to_string(value.size()) + " characters)";
-}
-
 bool parseFinite(std::string_view field, double& value) {
     return parseWhole(field, value) && std::isfinite(value);
 }

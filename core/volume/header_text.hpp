@@ -1,11 +1,13 @@
 #pragma once
 // Text helpers shared by the option parsers and the volume header readers
-// (NRRD, NumPy, VTK): splitting, whole-field numbers, and values quoted for
-// error messages (shortened, so a hostile header cannot flood a terminal).
+// (NRRD, NumPy, VTK): splitting and whole-field numbers (quoteValue, for
+// error messages, is core/base/quote_value.hpp).
 #include <charconv>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "core/base/quote_value.hpp"
 
 namespace weft {
 
@@ -16,8 +18,6 @@ std::string_view trimSpace(std::string_view text);
 std::string lowerAscii(std::string_view text);
 bool endsWithText(std::string_view text, std::string_view suffix);
 
-// 'value' for a message, at most 60 characters of it.
-std::string quoteValue(std::string_view value);
 
 // from_chars wants the whole field: "12abc" or " 12" are not numbers.
 template <class T>

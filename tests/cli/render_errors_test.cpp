@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"FolderAsMesh", "$D/folder.obj --res 8x8", "is a directory, not a file"},
         BadInputCase{"SymlinkLoopAsVolume", "$D/loop1.vdb --res 8x8", "is a loop of symbolic links"},
         BadInputCase{"DanglingSymlinkAsMesh", "$D/dangling.obj --res 8x8", "is a symbolic link to '"},
-        BadInputCase{"HugeNumberInScene", "$D/huge.json --res 8x8", "number too large for a double: '100000000000000000000000...' (401 characters)"},
+        BadInputCase{"HugeNumberInScene", "$D/huge.json --res 8x8", "number too large for a double: '100000000000000000000000000000000000000000000000000000000000...' (401 characters)"},
         BadInputCase{"FifoAsVolume", "$D/pipe.vdb --res 8x8", "is a FIFO (named pipe)"},
         BadInputCase{"DeviceAsMesh", "/dev/zero --res 8x8 --technique mesh.pathtrace", "expected a scene .json"},
         BadInputCase{"VdbCutShort", "$D/cut.vdb --res 8x8", "the file is cut short (grid 1 ends at byte "},
