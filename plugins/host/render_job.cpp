@@ -12,6 +12,7 @@
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/frames.hpp"
+#include "core/base/physical_memory.hpp"
 #include "core/base/progress.hpp"
 #include "core/scene/scene.hpp"
 #include "plugins/host/command.hpp"
@@ -141,17 +142,14 @@ int effectiveThreads(int requested) {
 
 }  // namespace
 
-double physicalMemoryGiB() {
-    const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && size > 0 ? double(pages) * double(size) / double(1 << 30) : 16.0;
-}
+double physicalMemoryGiB() { return physicalMemoryBytes() / double(1 << 30); }
 
 // What a render needs: the technique's working memory per pixel and the
 // scene already loaded (grids and meshes). Refused before the technique
 // allocates anything when it exceeds the limit.
 void checkMemory(const RenderRequest& r, int width, int height, const std::string& technique, double sceneBytes) {
     const double limit = r.maxMemoryGiB > 0 ? r.maxMemoryGiB : 0.75 * physicalMemoryGiB();
-    const double perPixel = techniques().has(technique) ? techniques().get(technique).bytesPerPixel : 32;
+    const double perPixel = techniques().has(technique) ? techniques().get(technique).bytesPerPixel : 32;  // unknown: refused later
     const double gib = double(1 << 30), image = double(width) * double(height) * perPixel / gib, need = image + sceneBytes / gib;
     if (need > limit) {
         char text[320];

@@ -1,10 +1,10 @@
 // The image codec module (weft_oiio.so): OpenImageIO behind
 // core/image/image_codec.hpp, so that only processes that touch image files load it.
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <cstdio>
 
+#include "core/base/physical_memory.hpp"
 #include "core/image/image_codec.hpp"
 
 namespace {
@@ -31,10 +31,7 @@ std::string writeImage(const std::string& path, const ImageFileSpec& f, const vo
 
 // Pixels a header may claim before reading is refused: half of physical
 // memory (a corrupt or hostile header must not reach the allocator).
-std::size_t maxPixelBytes() {
-    const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && size > 0 ? std::size_t(pages) * std::size_t(size) / 2 : std::size_t(1) << 33;
-}
+double maxPixelBytes() { return weft::physicalMemoryBytes() / 2; }
 
 // The library's messages stay inside the module: the caller gets what went
 // wrong in weft's words.
@@ -48,7 +45,7 @@ std::string readPixels(const std::string& path, ImageFileSpec& f, std::vector<fl
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         return "cannot be read: its header gives no pixels";
     const double bytes = double(spec.width) * spec.height * spec.nchannels * sizeof(float);
-    if (bytes > double(maxPixelBytes())) {
+    if (bytes > maxPixelBytes()) {
         char text[160];
         std::snprintf(text, sizeof text, "its header claims %dx%d pixels of %d channels (%.1f GiB as float), more than half of this machine's memory",
                       spec.width, spec.height, spec.nchannels, bytes / double(1 << 30));
