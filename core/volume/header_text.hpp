@@ -18,7 +18,6 @@ std::string_view trimSpace(std::string_view text);
 std::string lowerAscii(std::string_view text);
 bool endsWithText(std::string_view text, std::string_view suffix);
 
-
 // from_chars wants the whole field: "12abc" or " 12" are not numbers.
 template <class T>
 bool parseWhole(std::string_view field, T& value) {

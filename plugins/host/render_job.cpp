@@ -8,7 +8,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
-#include <unistd.h>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/frames.hpp"
