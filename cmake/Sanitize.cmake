@@ -22,6 +22,9 @@ if(WEFT_SANITIZE)
   # Reports inside Debian's library headers, one entry each with why.
   add_compile_options(${WEFT_SANITIZE_FLAGS} -fsanitize-ignorelist=${CMAKE_SOURCE_DIR}/scripts/sanitizers/ubsan-ignorelist.txt)
   add_link_options(${WEFT_SANITIZE_FLAGS})
+  # Every executable gets operator new that throws for absurd sizes, as a
+  # normal build's does (cmake/sanitize_bounded_new.cpp says why).
+  set(WEFT_SANITIZE_EXE_SOURCES ${CMAKE_SOURCE_DIR}/cmake/sanitize_bounded_new.cpp)
 endif()
 if(WEFT_FUZZ)
   add_compile_options(-fsanitize=fuzzer-no-link)

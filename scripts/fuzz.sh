@@ -11,8 +11,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/sanitize-env.sh
 seconds="${FUZZ_SECONDS:-60}"
-# NRRD/npy/VTK header parsers: their targets join this list (tests/fuzz/CMakeLists.txt).
-read -r -a targets <<<"${FUZZ_TARGETS:-scene_json vdb obj ply raw exr text}"
+# The targets of tests/fuzz/CMakeLists.txt.
+read -r -a targets <<<"${FUZZ_TARGETS:-scene_json vdb obj ply raw nrrd npy vtk exr text}"
 
 weft_configure_sanitize
 cmake --build "$WEFT_SANITIZE_DIR" -j"$(weft_jobs)" --target weft_fuzz_all

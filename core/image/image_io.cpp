@@ -8,6 +8,7 @@
 #include "core/image/color.hpp"
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
+#include "core/image/exr_preflight.hpp"
 #include "core/image/exr_writer.hpp"
 #include "core/image/image_codec.hpp"
 
@@ -50,6 +51,7 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
 
 Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window) {
     requireRegularFile(path, "image");
+    if (lowerExtension(path) == ".exr") preflightExr(path);
     ImageFileSpec spec;
     std::vector<float> pixels;
     const std::string error = imageCodec().read(path, spec, pixels);

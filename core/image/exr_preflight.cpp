@@ -1,0 +1,144 @@
+#include "core/image/exr_preflight.hpp"
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/base/error.hpp"
+#include "core/base/quote_value.hpp"
+
+namespace weft {
+
+namespace {
+
+constexpr std::uint32_t kMultiPartFlag = 0x1000;
+
+// Scanlines per chunk of each compression (OpenEXR's Compression enum order).
+int linesPerBlock(int compression) {
+    constexpr int lines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+    return compression >= 0 && compression < int(std::size(lines)) ? lines[compression] : 1;
+}
+
+class HeaderReader {
+public:
+    explicit HeaderReader(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+        std::error_code ec;
+        size_ = std::filesystem::file_size(path, ec);
+        if (!in_ || ec) fail("cannot be read");
+    }
+
+    [[noreturn]] void fail(const std::string& what) const { throw Error("image '" + path_ + "': cannot be read: " + what); }
+    std::uint64_t left() const { return size_ - pos_; }
+
+    void bytes(void* out, std::uint64_t n, const char* what) {
+        if (n > left()) fail(std::string("the file ends inside its header (") + what + ")");
+        in_.read(static_cast<char*>(out), std::streamsize(n));
+        pos_ += n;
+    }
+    std::uint32_t u32(const char* what) {
+        unsigned char b[4];
+        bytes(b, 4, what);
+        return std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+    }
+    // A NUL-terminated name of at most 255 characters ("" ends a header).
+    std::string name(const char* what) {
+        std::string s;
+        for (char c = 0;;) {
+            bytes(&c, 1, what);
+            if (c == '\0') return s;
+            if (s.size() == 255) fail(std::string("an attribute ") + what + " longer than 255 characters");
+            s += c;
+        }
+    }
+    void skip(std::uint64_t n) {
+        in_.seekg(std::streamoff(n), std::ios::cur);
+        pos_ += n;
+    }
+
+private:
+    std::string path_;
+    std::ifstream in_;
+    std::uint64_t size_ = 0, pos_ = 0;
+};
+
+struct PartFacts {
+    bool hasWindow = false, hasTiles = false, hasChunkCount = false;
+    std::int32_t window[4] = {0, 0, 0, 0};
+    std::uint32_t tile[2] = {1, 1};
+    int compression = 0;
+    std::uint64_t chunkCount = 0;
+};
+
+void readValue(HeaderReader& r, const std::string& name, const std::string& type, std::uint32_t size, PartFacts& f) {
+    if (name == "dataWindow" && type == "box2i" && size == 16) {
+        for (std::int32_t& v : f.window) v = std::int32_t(r.u32("dataWindow"));
+        f.hasWindow = true;
+    } else if (name == "tiles" && type == "tiledesc" && size == 9) {
+        f.tile[0] = r.u32("tiles"), f.tile[1] = r.u32("tiles");
+        r.skip(1);
+        f.hasTiles = true;
+    } else if (name == "compression" && type == "compression" && size == 1) {
+        unsigned char c = 0;
+        r.bytes(&c, 1, "compression");
+        f.compression = c;
+    } else if (name == "chunkCount" && type == "int" && size == 4) {
+        f.chunkCount = r.u32("chunkCount");
+        f.hasChunkCount = true;
+    } else {
+        r.skip(size);
+    }
+}
+
+bool printable(const std::string& s) {
+    for (unsigned char c : s)
+        if (c < 0x20 || c >= 0x7f) return false;
+    return true;
+}
+
+// One header's attributes; false when it is the empty header ending a multi-part file's list.
+bool readHeader(HeaderReader& r, PartFacts& f) {
+    for (int count = 0;; ++count) {
+        const std::string name = r.name("name");
+        if (name.empty()) return count > 0;
+        const std::string type = r.name("type");
+        const std::uint32_t size = r.u32("attribute size");
+        if (size > r.left())
+            r.fail((printable(name) && printable(type) ? "attribute " + quoteValue(name) + " (" + quoteValue(type) + ")"
+                                                       : std::string("an attribute with a corrupt name")) +
+                   " claims " + std::to_string(size) + " bytes, more than the " + std::to_string(r.left()) +
+                   " left in the file (corrupt or cut short)");
+        readValue(r, name, type, size, f);
+    }
+}
+
+// The chunks the part's offset table lists (a lower bound for mip-mapped tiles).
+std::uint64_t chunksOf(const PartFacts& f) {
+    if (f.hasChunkCount) return f.chunkCount;
+    if (!f.hasWindow) return 0;
+    const std::int64_t w = std::int64_t(f.window[2]) - f.window[0] + 1, h = std::int64_t(f.window[3]) - f.window[1] + 1;
+    if (w <= 0 || h <= 0) return 0;  // OpenEXR refuses it with its own message
+    if (f.hasTiles && f.tile[0] > 0 && f.tile[1] > 0)
+        return std::uint64_t((w + f.tile[0] - 1) / f.tile[0]) * std::uint64_t((h + f.tile[1] - 1) / f.tile[1]);
+    return std::uint64_t((h + linesPerBlock(f.compression) - 1) / linesPerBlock(f.compression));
+}
+
+}  // namespace
+
+void preflightExr(const std::string& path) {
+    HeaderReader r(path);
+    if (r.u32("magic number") != 20000630u) r.fail("not an EXR file (no EXR magic number)");
+    const bool multiPart = r.u32("version") & kMultiPartFlag;
+    std::uint64_t chunks = 0;
+    for (int part = 0;; ++part) {
+        PartFacts f;
+        if (!readHeader(r, f)) break;
+        chunks += chunksOf(f);
+        if (!multiPart) break;
+    }
+    if (chunks > r.left() / 8)
+        r.fail("its header needs an offset table of " + std::to_string(chunks) + " chunks (8 bytes each), more than the " +
+               std::to_string(r.left()) + " bytes left in the file (corrupt or cut short)");
+}
+
+}  // namespace weft

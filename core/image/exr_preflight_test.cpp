@@ -1,0 +1,66 @@
+// The EXR header check refuses corrupt sizes before OpenEXR allocates them,
+// and passes every file weft writes.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "core/image/exr_preflight.hpp"
+#include "core/image/image_io.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace weft {
+namespace {
+
+std::string written(const test::TempDir& dir, const ImageWindow* window = nullptr) {
+    Image img(8, 4, {"R", "G", "B", "A"});
+    const std::string path = (dir / "a.exr").string();
+    if (window) writeExr(img, path, {{"weft:technique", "volume.raymarch"}}, *window);
+    else writeExr(img, path, {{"weft:technique", "volume.raymarch"}});
+    return test::readBytes(path);
+}
+
+std::string preflightError(const test::TempDir& dir, const std::string& bytes) {
+    const auto path = dir / "b.exr";
+    test::writeText(path, bytes);
+    return test::errorOf([&] { preflightExr(path.string()); });
+}
+
+// Overwrites the 4-byte little-endian word at `at`.
+void putWord(std::string& bytes, std::size_t at, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) bytes[at + i] = char((v >> (8 * i)) & 0xff);
+}
+
+TEST(ExrPreflight, PassesWhatWeftWrites) {
+    test::TempDir dir;
+    EXPECT_EQ(preflightError(dir, written(dir)), "");
+    const ImageWindow tile{0, 2, 8, 8};
+    EXPECT_EQ(preflightError(dir, written(dir, &tile)), "");
+}
+
+TEST(ExrPreflight, RefusesSizesTheFileCannotHold) {
+    test::TempDir dir;
+    const std::string good = written(dir);
+    // A string attribute claiming 2 GB.
+    std::string bad = good;
+    const std::size_t at = bad.find(std::string("weft:technique\0string\0", 22));
+    ASSERT_NE(at, std::string::npos);
+    putWord(bad, at + 22, 0x7fffffff);
+    const std::string e = preflightError(dir, bad);
+    EXPECT_NE(e.find("attribute 'weft:technique' ('string') claims 2147483647 bytes"), std::string::npos) << e;
+    // A data window of 2^30 lines: an offset table of 8 GB.
+    bad = good;
+    const std::size_t window = bad.find(std::string("dataWindow\0box2i\0", 17));
+    ASSERT_NE(window, std::string::npos);
+    putWord(bad, window + 17 + 4 + 12, 1u << 30);  // yMax
+    EXPECT_NE(preflightError(dir, bad).find("offset table of"), std::string::npos);
+    // Cut inside the header, and not an EXR at all.
+    EXPECT_NE(preflightError(dir, good.substr(0, 40)).find("cut short"), std::string::npos);
+    EXPECT_NE(preflightError(dir, good.substr(0, 10)).find("ends inside its header"), std::string::npos);
+    EXPECT_NE(preflightError(dir, "P6\n8 4\n255\n").find("cannot be read: not an EXR file"), std::string::npos);
+    // readImage runs the check.
+    test::writeText(dir / "c.exr", good.substr(0, 40));
+    EXPECT_NE(test::errorOf([&] { readImage((dir / "c.exr").string()); }).find("cut short"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace weft
