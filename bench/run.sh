@@ -8,3 +8,4 @@ python3 bench/kraus_tables.py "$@"
 /usr/bin/python3 bench/volume_vs_vdb_render.py "$@"
 /usr/bin/python3 bench/segovia_tables.py
 /usr/bin/python3 bench/bauszat_tables.py
+/usr/bin/python3 bench/sweep_overhead.py

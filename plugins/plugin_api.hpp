@@ -12,7 +12,7 @@
 // share C++ types with the host, so they must be rebuilt against its headers.
 #include "plugins/technique.hpp"
 
-#define WEFT_PLUGIN_ABI_VERSION 2
+#define WEFT_PLUGIN_ABI_VERSION 3  // 3: TechniqueInfo gained reference and knobs
 
 extern "C" {
 typedef int (*weft_plugin_abi_version_fn)();

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/image/image.hpp"
 #include "core/base/params.hpp"
@@ -27,6 +28,17 @@ enum class Content : unsigned { None = 0, Volumes = 1, Meshes = 2, VolumesAndMes
 constexpr bool covers(Content has, Content needs) { return (unsigned(has) & unsigned(needs)) == unsigned(needs); }
 const char* contentName(Content c);  // "volumes", "meshes", "volumes and meshes", "no scene content"
 
+struct ConvergedReference {
+    std::string technique;
+    std::vector<std::string> sets;  // "key=value"
+    int spp = 1;
+};
+
+struct TradeKnob {
+    std::string key;
+    std::vector<std::string> values;
+};
+
 struct TechniqueInfo {
     std::string name;
     std::string summary;
@@ -41,6 +53,14 @@ struct TechniqueInfo {
     // 2048x2048 renders; the host refuses renders above --max-memory before
     // they start. 32: an RGBA float image and its accumulator.
     double bytesPerPixel = 32;
+    // The converged render this technique's images are measured against
+    // (weft sweep/tune --reference auto): a technique (itself, or the one
+    // its family converges to) with the parameters and samples per pixel
+    // that converge it. No technique: the family has no reference.
+    ConvergedReference reference;
+    // Its speed/accuracy knobs (weft tune): a key (a parameter, or spp) and
+    // a coarse grid of values, cheapest first.
+    std::vector<TradeKnob> knobs;
 };
 
 // Throws when the scene holds volumes or meshes the technique does not

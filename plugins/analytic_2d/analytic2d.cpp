@@ -78,6 +78,9 @@ const TechniqueRegistrar registrar{{
     [](const Scene&, const ParamSet& p) { return std::make_unique<Analytic2D>(p); },
     /*motionBlur=*/false,
     /*renders=*/Content::None,
+    /*bytesPerPixel=*/32,
+    /*reference=*/{"analytic.2d", {"reference=true"}, 1},
+    /*knobs=*/{{"spp", {"1", "4", "16", "64"}}},
 }};
 
 }  // namespace

@@ -25,8 +25,27 @@ void printList() {
     for (const TechniqueInfo* t : techniques().all()) std::printf("  %-28s %s\n", t->name.c_str(), t->summary.c_str());
 }
 
+// What weft sweep and weft tune use: the converged reference and the knobs.
+std::string referenceText(const TechniqueInfo& t) {
+    if (t.reference.technique.empty()) return "none";
+    std::string text = t.reference.technique;
+    for (const std::string& kv : t.reference.sets) text += " " + kv;
+    return text + " spp=" + std::to_string(t.reference.spp);
+}
+
+std::string knobsText(const TechniqueInfo& t) {
+    std::string text;
+    for (const TradeKnob& k : t.knobs) {
+        text += (text.empty() ? "" : "; ") + k.key + " ";
+        for (std::size_t i = 0; i < k.values.size(); ++i) text += (i ? "," : "") + k.values[i];
+    }
+    return text.empty() ? "none" : text;
+}
+
 void printText(const TechniqueInfo& t) {
     std::printf("%s: %s\n\nparameters (--set key=value):\n%s", t.name.c_str(), t.summary.c_str(), t.params.helpText().c_str());
+    std::printf("\nconverged reference (sweep/tune --reference auto): %s\nspeed/accuracy knobs (weft tune), cheapest first: %s\n",
+                referenceText(t).c_str(), knobsText(t).c_str());
 }
 
 void printMarkdown(const TechniqueInfo& t) {
@@ -35,6 +54,9 @@ void printMarkdown(const TechniqueInfo& t) {
     std::printf("Set with `--set key=value` or in a scene file's `render.params`; `weft help %s` prints the same.\n\n",
                 t.name.c_str());
     std::printf("%s", t.params.markdownTable().c_str());
+    std::printf("\nConverged reference (`weft sweep`/`weft tune --reference auto`): `%s`.\n"
+                "Speed/accuracy knobs searched by `weft tune`, cheapest first: `%s`.\n",
+                referenceText(t).c_str(), knobsText(t).c_str());
 }
 
 struct HelpOptions {

@@ -186,40 +186,63 @@ void validateRequest(const RenderRequest& r) {
     if (r.technique || bareVdb) techniques().get(r.technique.value_or(defaultTechnique(r.sets))).params.parse(given);
 }
 
+std::optional<double> requestAspect(const RenderRequest& r) {
+    if (!r.resolution) return std::nullopt;
+    const auto [w, h] = parseResolution(*r.resolution);
+    return double(w) / h;
+}
+
+LoadedScene loadRequestScene(const RenderRequest& r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    LoadedScene loaded;
+    loaded.scene = std::make_shared<const Scene>(
+        inStage("loading '" + r.input + "'", [&] { return loadScene(r.input, requestAspect(r), r.grid, r.frame); }));
+    loaded.loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return loaded;
+}
+
 RenderOutcome renderToImage(const RenderRequest& r) {
     validateRequest(r);  // cheap checks fail before the scene loads
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
-    RenderContext ctx;
-    std::optional<double> aspect;
-    if (r.resolution) {
-        auto [w, h] = parseResolution(*r.resolution);
-        aspect = double(w) / h;
+    const LoadedScene loaded = loadRequestScene(r);
+    return renderLoadedScene(r, loaded);
+}
+
+CheckedRender checkRender(const RenderRequest& r, const Scene& scene) {
+    CheckedRender c{effectiveRequest(r, scene.render), {}};  // the one precedence rule
+    const RenderRequest& q = c.effective;
+    const RenderSettings s = settingsFor(q);
+    checkMemory(r, s.width, s.height, *q.technique, sceneBytes(scene));  // the scene's own resolution and technique
+    const TechniqueInfo& info = techniques().get(*q.technique);
+    std::map<std::string, std::string> given;
+    for (const std::string& kv : q.sets) {
+        auto [k, v] = splitKeyValue(kv, "--set");
+        given[k] = v;
     }
-    const auto t0 = std::chrono::steady_clock::now();
-    const Scene scene = inStage("loading '" + r.input + "'", [&] { return loadScene(r.input, aspect, r.grid, r.frame); });
-    ctx.timings.add("load", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    const RenderRequest q = effectiveRequest(r, scene.render);  // the one precedence rule
+    c.params = info.params.parse(given);
+    checkTechniqueContent(info, scene);
+    if (scene.cameraMoves() && !info.motionBlur)
+        throw Error("the camera moves while the shutter is open, and " + info.name +
+                    " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
+    return c;
+}
+
+RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loaded) {
+    const Scene& scene = *loaded.scene;
+    RenderContext ctx;
+    ctx.timings.add("load", loaded.loadMs);
+    const CheckedRender checked = checkRender(r, scene);
+    const RenderRequest& q = checked.effective;
+    const ParamSet& params = checked.params;
     ctx.settings = settingsFor(q);
-    checkMemory(r, ctx.settings.width, ctx.settings.height, *q.technique, sceneBytes(scene));  // the scene's own resolution and technique
     RowBand band{0, ctx.settings.height};
     if (!r.tile.empty()) {
         const auto [index, count] = parseTileSpec(r.tile);
         band = tileRows(ctx.settings.height, index, count);
         ctx.settings.rowBegin = band.begin, ctx.settings.rowEnd = band.end;
     }
-
     const std::string name = *q.technique;
     const TechniqueInfo& info = techniques().get(name);
-    std::map<std::string, std::string> given;
-    for (const std::string& kv : q.sets) {
-        auto [k, v] = splitKeyValue(kv, "--set");
-        given[k] = v;
-    }
-    const ParamSet params = info.params.parse(given);
-    checkTechniqueContent(info, scene);
-    if (scene.cameraMoves() && !info.motionBlur)
-        throw Error("the camera moves while the shutter is open, and " + name +
-                    " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
     char stage[160];
     std::snprintf(stage, sizeof stage, "%s at %dx%d", name.c_str(), ctx.settings.width, ctx.settings.height);
     auto technique = inStage(stage, [&] { return info.create(scene, params); });

@@ -5,6 +5,7 @@
 // render starts, so bad input never costs render time or leaves files.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,29 @@ void validateRequest(const RenderRequest& request);
 
 // Renders without writing anything (tests and chains use this directly).
 RenderOutcome renderToImage(const RenderRequest& request);
+
+// The two halves of renderToImage, for callers that render one scene many
+// times (weft sweep): the scene as the request loads it (framed for its
+// resolution's aspect), and a render of an already loaded scene. The
+// caller has run validateRequest and set the thread count.
+struct Scene;
+struct LoadedScene {
+    std::shared_ptr<const Scene> scene;
+    double loadMs = 0;  // reported as the "load" timing of each render
+};
+std::optional<double> requestAspect(const RenderRequest& request);
+LoadedScene loadRequestScene(const RenderRequest& request);
+RenderOutcome renderLoadedScene(const RenderRequest& request, const LoadedScene& loaded);
+
+// The request as it renders on `scene` (effectiveRequest) and its parsed
+// technique parameters, after every check a render makes before it starts
+// (parameters, content, motion blur, memory): throws the render's error.
+struct CheckedRender {
+    RenderRequest effective;
+    ParamSet params;
+};
+CheckedRender checkRender(const RenderRequest& request, const Scene& scene);
+
 // Renders and writes the requested files (the EXR only when output is set);
 // returns what was rendered, for operations chained after it.
 RenderOutcome runRender(const RenderRequest& request);

@@ -277,6 +277,8 @@ const TechniqueRegistrar registrar{{
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
     /*bytesPerPixel=*/224,  // G-buffer, importance, A-Trous planes (220 measured)
+    /*reference=*/{"mesh.pathtrace", {}, 4096},
+    /*knobs=*/{{"spp", {"1", "4", "16", "64"}}, {"mode", {"uniform", "uniform_atrous", "adaptive_atrous"}}},
 }};
 
 }  // namespace

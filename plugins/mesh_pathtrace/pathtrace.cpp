@@ -295,6 +295,9 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<PathTracer>(scene, p); },
     /*motionBlur=*/true,
     /*renders=*/Content::VolumesAndMeshes,
+    /*bytesPerPixel=*/32,
+    /*reference=*/{"mesh.pathtrace", {}, 4096},
+    /*knobs=*/{{"spp", {"1", "4", "16", "64", "256"}}},
 }};
 
 }  // namespace

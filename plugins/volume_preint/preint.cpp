@@ -216,6 +216,9 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<Preint>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
+    /*bytesPerPixel=*/32,
+    /*reference=*/{"volume.raymarch", {"step=0.05"}, 16},
+    /*knobs=*/{{"spacing", {"4", "2", "1", "0.5"}}, {"table_res", {"64", "256"}}, {"spp", {"1", "4", "16"}}},
 }};
 
 }  // namespace

@@ -154,6 +154,9 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<Raymarch>(scene, p); },
     /*motionBlur=*/true,
     /*renders=*/Content::VolumesAndMeshes,
+    /*bytesPerPixel=*/32,
+    /*reference=*/{"volume.raymarch", {"step=0.05"}, 16},
+    /*knobs=*/{{"step", {"2", "1", "0.5", "0.25", "0.125"}}, {"spp", {"1", "4", "16"}}},
 }};
 
 }  // namespace

@@ -113,6 +113,9 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<SingleScatter>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
+    /*bytesPerPixel=*/32,
+    /*reference=*/{"volume.singlescatter", {"step=0.1", "shadowstep=0.25", "estimator=raymarch"}, 64},
+    /*knobs=*/{{"step", {"2", "1", "0.5"}}, {"shadowstep", {"6", "3", "1"}}, {"spp", {"1", "4", "16"}}},
 }};
 
 }  // namespace

@@ -1,0 +1,277 @@
+#include "core/image/flip.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "core/base/error.hpp"
+
+namespace weft {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kQc = 0.7, kPc = 0.4, kPt = 0.95, kQf = 0.5;
+constexpr double kFeatureWidthDeg = 0.082;  // w: sigma = w/2 degrees
+
+// One channel of an image, row-major.
+struct Plane {
+    int w = 0, h = 0;
+    std::vector<float> v;
+    Plane(int width, int height) : w(width), h(height), v(static_cast<std::size_t>(width) * height, 0.0f) {}
+    float& at(int x, int y) { return v[static_cast<std::size_t>(y) * w + x]; }
+    float at(int x, int y) const { return v[static_cast<std::size_t>(y) * w + x]; }
+};
+
+using Kernel = std::vector<double>;  // odd length, centred on the middle tap
+using Vec3 = std::array<double, 3>;
+using Mat3 = std::array<Vec3, 3>;
+
+// Linear sRGB (Rec.709 primaries, D65) to CIE XYZ, and back.
+constexpr Mat3 kRgbToXyz{{{0.4124564, 0.3575761, 0.1804375},
+                          {0.2126729, 0.7151522, 0.0721750},
+                          {0.0193339, 0.1191920, 0.9503041}}};
+constexpr Mat3 kXyzToRgb{{{3.2404542, -1.5371385, -0.4985314},
+                          {-0.9692660, 1.8760108, 0.0415560},
+                          {0.0556434, -0.2040259, 1.0572252}}};
+
+Vec3 mul(const Mat3& m, const Vec3& v) {
+    Vec3 r{};
+    for (int i = 0; i < 3; ++i) r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    return r;
+}
+
+// XYZ divided by the white point (the XYZ of RGB 1, 1, 1).
+Vec3 rgbToRelXyz(const Vec3& rgb) {
+    static const Vec3 white = mul(kRgbToXyz, {1, 1, 1});
+    const Vec3 xyz = mul(kRgbToXyz, rgb);
+    return {xyz[0] / white[0], xyz[1] / white[1], xyz[2] / white[2]};
+}
+
+Vec3 relXyzToRgb(const Vec3& rel) {
+    static const Vec3 white = mul(kRgbToXyz, {1, 1, 1});
+    return mul(kXyzToRgb, {rel[0] * white[0], rel[1] * white[1], rel[2] * white[2]});
+}
+
+// YCxCz: CIELAB without the cube root, so it is linear and may be filtered.
+Vec3 relXyzToYcxcz(const Vec3& x) { return {116 * x[1] - 16, 500 * (x[0] - x[1]), 200 * (x[1] - x[2])}; }
+
+Vec3 ycxczToRelXyz(const Vec3& c) {
+    const double y = (c[0] + 16) / 116;
+    return {y + c[1] / 500, y, y - c[2] / 200};
+}
+
+double labF(double t) {
+    constexpr double d = 6.0 / 29.0;
+    return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0 / 29.0;
+}
+
+// CIELAB with the Hunt adjustment (chroma scaled by L/100): dark colours differ less.
+Vec3 huntLab(const Vec3& rgb) {
+    const Vec3 x = rgbToRelXyz(rgb);
+    const double fx = labF(x[0]), fy = labF(x[1]), fz = labF(x[2]);
+    const double L = 116 * fy - 16;
+    return {L, 0.01 * L * 500 * (fx - fy), 0.01 * L * 200 * (fy - fz)};
+}
+
+// HyAB: city-block in lightness, Euclidean in chroma (large differences).
+double hyab(const Vec3& a, const Vec3& b) {
+    return std::abs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]);
+}
+
+// The largest colour error, green vs blue, after the power q_c.
+double maxColorError() {
+    static const double cmax = std::pow(hyab(huntLab({0, 1, 0}), huntLab({0, 0, 1})), kQc);
+    return cmax;
+}
+
+// Compresses the powered HyAB distance into [0, 1]: the lower p_c of the
+// range maps linearly to [0, p_t], the rest to [p_t, 1].
+double remapColorError(double distance) {
+    const double e = std::pow(distance, kQc), cmax = maxColorError();
+    const double r = e < kPc * cmax ? kPt / (kPc * cmax) * e : kPt + (e - kPc * cmax) / (cmax - kPc * cmax) * (1 - kPt);
+    return std::clamp(r, 0.0, 1.0);
+}
+
+// 1-D correlation along rows or columns, clamped to the edge.
+Plane convolve1d(const Plane& p, const Kernel& k, bool alongRows) {
+    Plane out(p.w, p.h);
+    const int r = static_cast<int>(k.size() / 2);
+    auto tap = [&](int x, int y, int j) {
+        return alongRows ? p.at(std::clamp(x + j, 0, p.w - 1), y) : p.at(x, std::clamp(y + j, 0, p.h - 1));
+    };
+    for (int y = 0; y < p.h; ++y)
+        for (int x = 0; x < p.w; ++x) {
+            double s = 0;
+            for (int j = -r; j <= r; ++j) s += k[j + r] * tap(x, y, j);
+            out.at(x, y) = static_cast<float>(s);
+        }
+    return out;
+}
+
+Plane convolve(const Plane& p, const Kernel& kx, const Kernel& ky) {
+    return convolve1d(convolve1d(p, kx, true), ky, false);
+}
+
+// out += w * p
+void addScaled(Plane& out, const Plane& p, double w) {
+    for (std::size_t i = 0; i < out.v.size(); ++i) out.v[i] += static_cast<float>(w * p.v[i]);
+}
+
+// One channel's contrast sensitivity as a sum of two Gaussians in visual
+// angle: a_k sqrt(pi / b_k) exp(-pi^2 r^2 / b_k), r in degrees (the paper's constants).
+struct Csf {
+    double a1, b1, a2, b2;
+};
+constexpr std::array<Csf, 3> kCsf{{{1, 0.0047, 0, 1e-5}, {1, 0.0053, 0, 1e-5}, {34.1, 0.04, 13.5, 0.025}}};
+
+Kernel csfTerm(double b, int radius, double ppd) {
+    Kernel k(2 * radius + 1);
+    for (int i = -radius; i <= radius; ++i) k[i + radius] = std::exp(-kPi * kPi * (i / ppd) * (i / ppd) / b);
+    return k;
+}
+
+double sum(const Kernel& k) {
+    double s = 0;
+    for (double v : k) s += v;
+    return s;
+}
+
+// The 2-D filter is separable per Gaussian term; the whole is normalised to
+// sum 1, so flat regions keep their colour. Radius: 3 sigma of the widest term.
+Plane csfFilter(const Plane& p, const Csf& c, double ppd) {
+    const double bMax = c.a2 > 0 ? std::max(c.b1, c.b2) : c.b1;
+    const int radius = static_cast<int>(std::ceil(3 * std::sqrt(bMax / (2 * kPi * kPi)) * ppd));
+    std::vector<std::pair<double, Kernel>> terms{{c.a1 * std::sqrt(kPi / c.b1), csfTerm(c.b1, radius, ppd)}};
+    if (c.a2 > 0) terms.push_back({c.a2 * std::sqrt(kPi / c.b2), csfTerm(c.b2, radius, ppd)});
+    double total = 0;
+    for (const auto& [w, k] : terms) total += w * sum(k) * sum(k);
+    Plane out(p.w, p.h);
+    for (const auto& [w, k] : terms) addScaled(out, convolve(p, k, k), w / total);
+    return out;
+}
+
+// A display value: clamped to [0, 1], NaN shows as black.
+double displayValue(float v) { return std::isnan(v) ? 0.0 : std::clamp(static_cast<double>(v), 0.0, 1.0); }
+
+// R, G, B as displayed, as YCxCz planes.
+std::array<Plane, 3> toYcxcz(const Image& img) {
+    const int ch[3] = {img.channelIndex("R"), img.channelIndex("G"), img.channelIndex("B")};
+    const Plane empty(img.width(), img.height());
+    std::array<Plane, 3> out{empty, empty, empty};
+    for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) {
+            Vec3 rgb;
+            for (int i = 0; i < 3; ++i) rgb[i] = displayValue(img.at(x, y, ch[i]));
+            const Vec3 c = relXyzToYcxcz(rgbToRelXyz(rgb));
+            for (int i = 0; i < 3; ++i) out[i].at(x, y) = static_cast<float>(c[i]);
+        }
+    return out;
+}
+
+// Per pixel colour error of two CSF-filtered YCxCz images.
+Plane colorError(const std::array<Plane, 3>& t, const std::array<Plane, 3>& r) {
+    Plane out(t[0].w, t[0].h);
+    auto lab = [](const std::array<Plane, 3>& p, std::size_t i) {
+        Vec3 rgb = relXyzToRgb(ycxczToRelXyz({p[0].v[i], p[1].v[i], p[2].v[i]}));
+        for (double& c : rgb) c = std::clamp(c, 0.0, 1.0);
+        return huntLab(rgb);
+    };
+    for (std::size_t i = 0; i < out.v.size(); ++i)
+        out.v[i] = static_cast<float>(remapColorError(hyab(lab(t, i), lab(r, i))));
+    return out;
+}
+
+// Scales positive taps to sum 1 and negative taps to sum -1, so a response
+// lies in [-1, 1] and a flat region gives 0.
+void balance(Kernel& k) {
+    double pos = 0, neg = 0;
+    for (double v : k) (v > 0 ? pos : neg) += v;
+    for (double& v : k) v = v > 0 ? v / pos : v < 0 ? v / -neg : 0;
+}
+
+// Gaussian (sum 1), its first derivative (edges) and second (points). The
+// 2-D kernels are derivative x Gaussian, so balancing the 1-D derivative
+// balances the 2-D kernel as the paper does (positive 1, negative -1).
+struct FeatureKernels {
+    Kernel gauss, edge, point;
+};
+
+FeatureKernels featureKernels(double ppd) {
+    const double sd = 0.5 * kFeatureWidthDeg * ppd;
+    const int radius = static_cast<int>(std::ceil(3 * sd));
+    FeatureKernels f{Kernel(2 * radius + 1), Kernel(2 * radius + 1), Kernel(2 * radius + 1)};
+    for (int i = -radius; i <= radius; ++i) {
+        const double g = std::exp(-0.5 * i * i / (sd * sd));
+        f.gauss[i + radius] = g, f.edge[i + radius] = -i * g, f.point[i + radius] = (i * i / (sd * sd) - 1) * g;
+    }
+    const double s = sum(f.gauss);
+    for (double& v : f.gauss) v /= s;
+    balance(f.edge), balance(f.point);
+    return f;
+}
+
+// |(Gx * y, Gy * y)| per pixel for a derivative kernel d (Gaussian across it).
+Plane featureMagnitude(const Plane& y, const Kernel& d, const Kernel& g) {
+    Plane fx = convolve(y, d, g), fy = convolve(y, g, d);
+    for (std::size_t i = 0; i < fx.v.size(); ++i) fx.v[i] = std::hypot(fx.v[i], fy.v[i]);
+    return fx;
+}
+
+// Achromatic channel in [0, 1] (relative luminance) from YCxCz's Y.
+Plane achromatic(const Plane& ycxczY) {
+    Plane out = ycxczY;
+    for (float& v : out.v) v = (v + 16) / 116;
+    return out;
+}
+
+// dEf = (max(|edge difference|, |point difference|) / sqrt 2)^q_f.
+Plane featureError(const Plane& testY, const Plane& refY, double ppd) {
+    const FeatureKernels k = featureKernels(ppd);
+    const Plane et = featureMagnitude(testY, k.edge, k.gauss), er = featureMagnitude(refY, k.edge, k.gauss);
+    const Plane pt = featureMagnitude(testY, k.point, k.gauss), pr = featureMagnitude(refY, k.point, k.gauss);
+    Plane out(testY.w, testY.h);
+    for (std::size_t i = 0; i < out.v.size(); ++i) {
+        const double d = std::max(std::abs(et.v[i] - er.v[i]), std::abs(pt.v[i] - pr.v[i])) / std::numbers::sqrt2;
+        out.v[i] = static_cast<float>(std::pow(std::min(d, 1.0), kQf));
+    }
+    return out;
+}
+
+std::string sizeText(const Image& img) { return std::to_string(img.width()) + "x" + std::to_string(img.height()); }
+
+void checkInputs(const Image& test, const Image& reference, double ppd) {
+    if (test.width() != reference.width() || test.height() != reference.height())
+        throw Error("FLIP: images differ in size: " + sizeText(test) + " vs " + sizeText(reference));
+    for (const Image* img : {&test, &reference})
+        for (const char* c : {"R", "G", "B"})
+            if (img->channelIndex(c) < 0)
+                throw Error(std::string("FLIP: the ") + (img == &test ? "test" : "reference") + " image has no " + c +
+                            " channel");
+    if (!(ppd > 0) || !std::isfinite(ppd))
+        throw Error("FLIP: pixels per degree must be a positive number, not " + std::to_string(ppd));
+}
+
+}  // namespace
+
+FlipResult flipError(const Image& test, const Image& reference, double pixelsPerDegree) {
+    checkInputs(test, reference, pixelsPerDegree);
+    const std::array<Plane, 3> t = toYcxcz(test), r = toYcxcz(reference);
+    std::array<Plane, 3> tf = t, rf = r;
+    for (int i = 0; i < 3; ++i)
+        tf[i] = csfFilter(t[i], kCsf[i], pixelsPerDegree), rf[i] = csfFilter(r[i], kCsf[i], pixelsPerDegree);
+    const Plane ec = colorError(tf, rf), ef = featureError(achromatic(t[0]), achromatic(r[0]), pixelsPerDegree);
+    FlipResult result{0, Image(test.width(), test.height(), {"FLIP"})};
+    double total = 0;
+    for (std::size_t i = 0; i < ec.v.size(); ++i) {
+        result.errorMap.data()[i] = static_cast<float>(std::pow(double(ec.v[i]), 1.0 - ef.v[i]));
+        total += result.errorMap.data()[i];
+    }
+    result.mean = ec.v.empty() ? 0 : total / static_cast<double>(ec.v.size());
+    return result;
+}
+
+}  // namespace weft

@@ -1,0 +1,148 @@
+#include "plugins/host/trade/sweep_report.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "core/base/atomic_file.hpp"
+#include "core/base/error.hpp"
+#include "core/base/pareto.hpp"
+
+namespace weft {
+
+namespace {
+
+void writeText(const std::string& path, const std::string& text) {
+    AtomicOutput file(path);
+    std::ofstream os(file.tempPath(), std::ios::binary);
+    os << text;
+    os.close();
+    if (!os) throw Error("'" + path + "': write failed");
+    file.commit();
+}
+
+std::string number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", v);
+    return text;
+}
+
+// A CSV field: quoted when it holds a comma, quote or line break.
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+template <class Get>
+std::set<std::string> unionOf(const std::vector<SweepResult>& results, Get get) {
+    std::set<std::string> keys;
+    for (const SweepResult& r : results) get(r, keys);
+    return keys;
+}
+
+std::string varied(const SweepResult& r, const std::string& key) {
+    for (const auto& [k, v] : r.run.varied)
+        if (k == key) return v;
+    return "";
+}
+
+std::string errorCells(const TradeError& e) {
+    return number(e.rmse) + "," + number(e.relMse) + "," + number(e.psnr) + "," + number(e.ssim) + "," + number(e.maxAbs) + "," +
+           number(e.flip);
+}
+
+nlohmann::ordered_json errorJson(const TradeError& e) {
+    return {{"rmse", e.rmse}, {"relmse", e.relMse}, {"psnr", e.psnr}, {"ssim", e.ssim}, {"maxabs", e.maxAbs}, {"flip", e.flip}};
+}
+
+nlohmann::ordered_json resultJson(const SweepResult& r, bool byTime, bool bySamples) {
+    nlohmann::ordered_json j{{"run", r.run.index + 1}, {"technique", r.run.technique}, {"label", runLabel(r.run)}};
+    for (const auto& [k, v] : r.run.varied) j["varied"][k] = v;
+    j["params"] = r.params;
+    j["time_ms"] = {{"median", r.times.medianMs}, {"min", r.times.minMs}, {"max", r.times.maxMs}, {"repeats", r.repeatMs}};
+    j["samples"] = r.samples;
+    j["error"] = errorJson(r.error);
+    j["front"] = {{"time", byTime}, {"samples", bySamples}};
+    j["counters"] = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : r.counters) j["counters"][k] = v;
+    return j;
+}
+
+}  // namespace
+
+SweepFronts sweepFronts(const std::vector<SweepResult>& results, TradeMetric metric) {
+    std::vector<std::pair<double, double>> time, samples;
+    for (const SweepResult& r : results) {
+        time.emplace_back(r.times.medianMs, metricAsError(r.error, metric));
+        samples.emplace_back(double(r.samples), metricAsError(r.error, metric));
+    }
+    SweepFronts f{std::vector<bool>(results.size()), std::vector<bool>(results.size())};
+    for (std::size_t i : paretoFront(time)) f.byTime[i] = true;
+    for (std::size_t i : paretoFront(samples)) f.bySamples[i] = true;
+    return f;
+}
+
+void writeSweepCsv(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts) {
+    const auto keys = unionOf(results, [](const SweepResult& r, std::set<std::string>& s) {
+        for (const auto& kv : r.run.varied) s.insert(kv.first);
+    });
+    const auto counters = unionOf(results, [](const SweepResult& r, std::set<std::string>& s) {
+        for (const auto& kv : r.counters) s.insert(kv.first);
+    });
+    std::ostringstream os;
+    os << "run,technique";
+    for (const std::string& k : keys) os << "," << csvField(k);
+    os << ",params,median_ms,min_ms,max_ms,samples,rmse,relmse,psnr,ssim,maxabs,flip,front_time,front_samples";
+    for (const std::string& c : counters) os << ",counters." << c;
+    os << "\n";
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const SweepResult& r = results[i];
+        os << r.run.index + 1 << "," << r.run.technique;
+        for (const std::string& k : keys) os << "," << csvField(varied(r, k));
+        os << "," << csvField(r.params) << "," << number(r.times.medianMs) << "," << number(r.times.minMs) << ","
+           << number(r.times.maxMs) << "," << r.samples << "," << errorCells(r.error) << "," << int(fronts.byTime[i]) << ","
+           << int(fronts.bySamples[i]);
+        for (const std::string& c : counters) {
+            const auto it = r.counters.find(c);
+            os << "," << (it == r.counters.end() ? 0 : it->second);
+        }
+        os << "\n";
+    }
+    writeText(path, os.str());
+}
+
+void writeSweepJson(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
+                    const SweepReportInfo& info) {
+    nlohmann::ordered_json j{{"scene", info.scene}, {"reference", info.reference}, {"metric", tradeMetricName(info.metric)},
+                             {"repeat", info.repeat}, {"runs", nlohmann::ordered_json::array()}};
+    for (std::size_t i = 0; i < results.size(); ++i) j["runs"].push_back(resultJson(results[i], fronts.byTime[i], fronts.bySamples[i]));
+    writeText(path, j.dump(2) + "\n");
+}
+
+void writeSweepMarkdown(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
+                        const SweepReportInfo& info) {
+    std::vector<std::size_t> order(results.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return results[a].times.medianMs < results[b].times.medianMs; });
+    std::ostringstream os;
+    os << "Sweep of `" << info.scene << "` against `" << info.reference << "`, median of " << info.repeat
+       << " render(s); front: not beaten on both time and " << tradeMetricName(info.metric) << ".\n\n"
+       << "| technique | settings | time (s) | samples | RMSE | relMSE | PSNR (dB) | SSIM | FLIP | front |\n"
+       << "|---|---|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+    for (std::size_t i : order) {
+        const SweepResult& r = results[i];
+        char row[512];
+        std::snprintf(row, sizeof row, "| %s | %s | %.3g | %lld | %.4g | %.4g | %.2f | %.4f | %.4f | %s |\n", r.run.technique.c_str(),
+                      runLabel(r.run).c_str(), r.times.medianMs / 1000, (long long)r.samples, r.error.rmse, r.error.relMse,
+                      r.error.psnr, r.error.ssim, r.error.flip, fronts.byTime[i] ? "*" : "");
+        os << row;
+    }
+    writeText(path, os.str());
+}
+
+}  // namespace weft

@@ -1,0 +1,30 @@
+#pragma once
+// A sweep's results as files: sweep.csv (one row per run), sweep.json (the
+// same with every repeat's time), sweep.md (a Markdown table for a README)
+// and the Pareto fronts of time and of samples against the chosen metric.
+// Each file is written to a temporary name and renamed.
+#include <string>
+#include <vector>
+
+#include "plugins/host/trade/sweep_run.hpp"
+
+namespace weft {
+
+struct SweepFronts {
+    std::vector<bool> byTime, bySamples;  // per result: on that front
+};
+SweepFronts sweepFronts(const std::vector<SweepResult>& results, TradeMetric metric);
+
+struct SweepReportInfo {
+    std::string scene, reference;  // as given
+    TradeMetric metric = TradeMetric::Rmse;
+    int repeat = 1;
+};
+
+void writeSweepCsv(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts);
+void writeSweepJson(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
+                    const SweepReportInfo& info);
+void writeSweepMarkdown(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
+                        const SweepReportInfo& info);
+
+}  // namespace weft
