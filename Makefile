@@ -1,6 +1,7 @@
 # Convenience targets; the scripts are what the README and CI run.
-.PHONY: all demo test test-slow test-sanitize fuzz bench clean
+.PHONY: all demo test test-slow test-sanitize fuzz bench trade clean
 FUZZ_SECONDS ?= 60
+FUZZ_RUNS ?= -1
 all:
 	bash scripts/build.sh
 demo:
@@ -12,8 +13,10 @@ test-slow:
 test-sanitize:
 	bash scripts/test-sanitize.sh
 fuzz:
-	FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/fuzz.sh
+	FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_RUNS=$(FUZZ_RUNS) bash scripts/fuzz.sh
 bench: all
 	bash bench/run.sh
+trade: all
+	/usr/bin/python3 bench/trade_atlas.py
 clean:
 	rm -rf build build-sanitize out

@@ -2,7 +2,8 @@
 # `make fuzz FUZZ_SECONDS=N`: builds the libFuzzer targets (tests/fuzz, in
 # build-sanitize/ with ASan and UBSan, the build `make test-sanitize` uses)
 # and runs each for N seconds (default 60), then prints executions and
-# findings per target. FUZZ_TARGETS="obj ply" runs only those.
+# findings per target. FUZZ_TARGETS="obj ply" runs only those; FUZZ_RUNS=M
+# stops a target after M executions (its N seconds still bound it).
 # Under build-sanitize/fuzz/: seeds/ (written once), corpus/<target>/ (what
 # the runs found interesting, kept between runs), findings/<target>/ (the
 # inputs that crashed, leaked or hung), logs/<target>.log.
@@ -11,6 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/sanitize-env.sh
 seconds="${FUZZ_SECONDS:-60}"
+runs_limit="${FUZZ_RUNS:--1}"
 # The targets of tests/fuzz/CMakeLists.txt.
 read -r -a targets <<<"${FUZZ_TARGETS:-scene_json vdb obj ply raw nrrd npy vtk exr text}"
 
@@ -45,7 +47,7 @@ for t in "${targets[@]}"; do
   rc=0
   # -timeout 10: an input that takes longer is a hang (issue 14's bound).
   # shellcheck disable=SC2046
-  "$bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  "$bin/fuzz_$t" -max_total_time="$seconds" -runs="$runs_limit" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$work/findings/$t/" $(dictionary "$t") "$work/corpus/$t" "$work/seeds/$t" >"$log" 2>&1 || rc=$?
   runs=$(stat "$log" number_of_executed_units)
   rate=$(stat "$log" average_exec_per_sec)

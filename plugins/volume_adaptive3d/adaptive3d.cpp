@@ -183,7 +183,7 @@ const TechniqueRegistrar registrar{{
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
     /*bytesPerPixel=*/140,  // pyramid levels of rays, values and distances (135 measured)
-    /*reference=*/{"volume.raymarch", {"step=0.05"}, 16},
+    /*reference=*/{"volume.raymarch", {"step=0.1"}, 256},
     /*knobs=*/{{"lmax", {"3", "2", "1", "0"}}, {"spacing", {"2", "1", "0.5"}}},
 }};
 

@@ -155,7 +155,7 @@ const TechniqueRegistrar registrar{{
     /*motionBlur=*/true,
     /*renders=*/Content::VolumesAndMeshes,
     /*bytesPerPixel=*/32,
-    /*reference=*/{"volume.raymarch", {"step=0.05"}, 16},
+    /*reference=*/{"volume.raymarch", {"step=0.1"}, 256},
     /*knobs=*/{{"step", {"2", "1", "0.5", "0.25", "0.125"}}, {"spp", {"1", "4", "16"}}},
 }};
 

@@ -122,8 +122,8 @@ TEST(SweepCli, AutoReferenceIsRenderedOnceAndCachedByContentAndSettings) {
     readImage(first.string(), &md);
     std::map<std::string, std::string> meta(md.begin(), md.end());
     EXPECT_EQ(meta["weft:technique"], "volume.raymarch");
-    EXPECT_EQ(meta["weft:param:step"], "0.05");
-    EXPECT_EQ(meta["weft:spp"], "16");
+    EXPECT_EQ(meta["weft:param:step"], "0.1");
+    EXPECT_EQ(meta["weft:spp"], "256");
     ASSERT_EQ(runWeft(sweep + " --vary jitter=true").status, 0);  // another knob: the same reference
     ASSERT_EQ(refs().size(), 1u);
     EXPECT_EQ(std::filesystem::last_write_time(first), stamp);

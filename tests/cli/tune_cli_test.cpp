@@ -17,13 +17,13 @@ using namespace weft::test;
 TEST(TuneCli, PrintedCommandMeetsTheTarget) {
     TempDir dir;
     const std::string cache = " --cache " + (dir / "refs").string();
-    const auto out = runWeft("tune builtin:sphere --res 24x16 --technique volume.raymarch --technique volume.preint --target rmse=0.004" +
+    const auto out = runWeft("tune builtin:sphere --res 24x16 --technique volume.raymarch --technique volume.preint --target rmse=0.02" +
                              cache + " --json " + (dir / "choice.json").string());
     ASSERT_EQ(out.status, 0) << out.output;
     std::ifstream in(dir / "choice.json");
     const auto j = nlohmann::json::parse(in);
     ASSERT_TRUE(j["met"].get<bool>()) << out.output;
-    EXPECT_LE(j["choice"]["error"]["rmse"].get<double>(), 0.004);
+    EXPECT_LE(j["choice"]["error"]["rmse"].get<double>(), 0.02);
     EXPECT_EQ(j["techniques"].size(), 2u);
     std::string command = j["choice"]["command"];
     ASSERT_EQ(command.rfind("weft render ", 0), 0u) << command;
@@ -34,7 +34,7 @@ TEST(TuneCli, PrintedCommandMeetsTheTarget) {
     for (const auto& e : std::filesystem::directory_iterator(dir / "refs")) refs.push_back(e.path());
     ASSERT_EQ(refs.size(), 1u);  // raymarch and preint share their family's reference
     const TradeError e = measureTradeError(readImage((dir / "again.exr").string()), readImage(refs[0].string()));
-    EXPECT_LE(e.rmse, 0.004);
+    EXPECT_LE(e.rmse, 0.02);
 }
 
 TEST(TuneCli, BadTargetsAreOneLine) {
