@@ -5,6 +5,7 @@
 // folder that registers a builder by name; the builder precomputes a field
 // once per volume and transfer function, which renderers then sample at the
 // same points as the data (no virtual call per sample).
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -33,6 +34,11 @@ struct OracleField {
     template <class Accessor>
     float at(const Accessor& acc, const openvdb::Vec3d& indexPos) const {
         if (!distance) return constant;
+        // Beyond int range (or NaN) a Coord cannot be formed; the grid's
+        // background is what it holds there.
+        constexpr double kFar = double(1 << 30);
+        if (!(std::abs(indexPos.x()) < kFar && std::abs(indexPos.y()) < kFar && std::abs(indexPos.z()) < kFar))
+            return distance->background();
         return acc.getValue(openvdb::Coord::round(indexPos));
     }
 };

@@ -1,8 +1,9 @@
 #include "core/base/frames.hpp"
 
+#include <algorithm>
+
 #include <cctype>
 #include <cstdio>
-#include <set>
 
 #include "core/base/error.hpp"
 
@@ -74,9 +75,12 @@ std::vector<int> parseFrameRange(const std::string& text) {
         if (comma == std::string::npos) break;
         start = comma + 1;
     }
-    std::set<int> seen;
-    for (int f : frames)
-        if (!seen.insert(f).second) badRange(text, "frame " + std::to_string(f) + " is listed twice");
+    // A sorted copy finds a repeat in one pass (a set of a million frames
+    // took seconds under the sanitizers).
+    std::vector<int> sorted = frames;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+        badRange(text, "frame " + std::to_string(*twice) + " is listed twice");
     return frames;
 }
 

@@ -53,8 +53,10 @@ inline __attribute__((always_inline)) void accumulateOffset(const Planes& g, int
     const int x0 = std::max(0, -dx), x1 = std::min(width, width - dx);
     const std::size_t a = std::size_t(y) * width + x0, b = std::size_t(y + dy) * width + std::size_t(x0 + dx);
     acc += x0;
-    const float *n0 = g.n[0] + a, *n1 = g.n[1] + a, *n2 = g.n[2] + a, *m0 = g.n[0] + b, *m1 = g.n[1] + b, *m2 = g.n[2] + b;
-    const float *p0 = g.p[0] + a, *p1 = g.p[1] + a, *p2 = g.p[2] + a, *q0 = g.p[0] + b, *q1 = g.p[1] + b, *q2 = g.p[2] + b;
+    // An unused guide's planes are null, and an offset from null is undefined.
+    const auto at = [](const float* plane, std::size_t i) { return plane ? plane + i : nullptr; };
+    const float *n0 = at(g.n[0], a), *n1 = at(g.n[1], a), *n2 = at(g.n[2], a), *m0 = at(g.n[0], b), *m1 = at(g.n[1], b), *m2 = at(g.n[2], b);
+    const float *p0 = at(g.p[0], a), *p1 = at(g.p[1], a), *p2 = at(g.p[2], a), *q0 = at(g.p[0], b), *q1 = at(g.p[1], b), *q2 = at(g.p[2], b);
     for (int x = 0; x < x1 - x0; ++x) {
         float e = 0;
         if constexpr (UseN) {

@@ -71,7 +71,11 @@ VplSet generateVpls(const Scene& scene, std::uint32_t paths, std::uint64_t seed,
             const Source& src = pickSource(sources, rng.uniform());
             PathStart start;
             if (src.light < 0) {
-                const EmitterSample e = emitters.sample((float(k) + rng.uniform()) / float(paths), rng.uniform(), rng.uniform());
+                // Drawn one by one: the order of a call's arguments is unspecified
+                // (gcc evaluated them right to left, clang left to right), and the
+                // image must not depend on the compiler. This is gcc's order.
+                const float u2 = rng.uniform(), u1 = rng.uniform(), u0 = rng.uniform();
+                const EmitterSample e = emitters.sample((float(k) + u0) / float(paths), u1, u2);
                 const float pdf = src.pdf * e.pdfArea;
                 emitterVpl[k] = {e.position, e.normal, e.radiance / pdf, Vec3f(0, 0, 0), -1, VplKind::Emitter, k};
                 hasEmitter[k] = 1;
