@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "core/base/error.hpp"
 
 namespace weft {
@@ -96,19 +98,37 @@ double remapColorError(double distance) {
     return std::clamp(r, 0.0, 1.0);
 }
 
-// 1-D correlation along rows or columns, clamped to the edge.
-Plane convolve1d(const Plane& p, const Kernel& k, bool alongRows) {
-    Plane out(p.w, p.h);
+// 1-D correlation along a row, clamped to the edge; the interior needs no clamping.
+void correlateRow(const float* row, int w, const std::vector<float>& k, float* out) {
     const int r = static_cast<int>(k.size() / 2);
-    auto tap = [&](int x, int y, int j) {
-        return alongRows ? p.at(std::clamp(x + j, 0, p.w - 1), y) : p.at(x, std::clamp(y + j, 0, p.h - 1));
-    };
-    for (int y = 0; y < p.h; ++y)
-        for (int x = 0; x < p.w; ++x) {
-            double s = 0;
-            for (int j = -r; j <= r; ++j) s += k[j + r] * tap(x, y, j);
-            out.at(x, y) = static_cast<float>(s);
+    for (int x = 0; x < w; ++x) {
+        float s = 0;
+        if (x >= r && x + r < w) {
+            const float* src = row + (x - r);
+            for (std::size_t j = 0; j < k.size(); ++j) s += k[j] * src[j];
+        } else {
+            for (int j = -r; j <= r; ++j) s += k[j + r] * row[std::clamp(x + j, 0, w - 1)];
         }
+        out[x] = s;
+    }
+}
+
+// Rows are independent, so they run in parallel and the result does not
+// depend on the thread count. Along columns, whole rows are scaled and
+// added (contiguous, so it vectorises).
+Plane convolve1d(const Plane& p, const Kernel& kernel, bool alongRows) {
+    Plane out(p.w, p.h);
+    const std::vector<float> k(kernel.begin(), kernel.end());
+    const int r = static_cast<int>(k.size() / 2);
+    tbb::parallel_for(0, p.h, [&](int y) {
+        float* o = &out.v[static_cast<std::size_t>(y) * p.w];
+        if (alongRows) return correlateRow(&p.v[static_cast<std::size_t>(y) * p.w], p.w, k, o);
+        for (int j = -r; j <= r; ++j) {
+            const float* src = &p.v[static_cast<std::size_t>(std::clamp(y + j, 0, p.h - 1)) * p.w];
+            const float kj = k[j + r];
+            for (int x = 0; x < p.w; ++x) o[x] += kj * src[x];
+        }
+    });
     return out;
 }
 
