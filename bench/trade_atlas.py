@@ -16,6 +16,7 @@ skipped with a line saying so.
 import argparse
 import csv
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -63,6 +64,7 @@ def sweep(scene, techniques, out, res, threads):
     for t in techniques:
         args += ["--technique", t] + sum((["--vary", "%s=%s" % (k, v)] for k, v in knobs_of(t)), [])
     seconds, _ = run_timed(args)
+    shutil.rmtree(os.path.join(out, "references"), ignore_errors=True)  # rendered EXRs stay out of docs/
     with open(os.path.join(out, "sweep.csv")) as f:
         return seconds, list(csv.DictReader(f))
 
@@ -81,20 +83,25 @@ def main():
     ap.add_argument("--scenes", default="all", help="comma-separated names, or all")
     ap.add_argument("--res", default="128x128")
     ap.add_argument("--threads", default="2")
+    ap.add_argument("--techniques", default=None, help="comma-separated: only these of each scene's techniques")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "trade"))
     ap.add_argument("--data", default=os.path.join(os.path.dirname(ROOT), "shared", "data"))
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix="weft-trade-")  # the converted aneurism and scene files
     available = scenes(args.data if os.path.isdir(args.data) else None, work)
-    lines = ["# Trade atlas", "", "`/usr/bin/python3 bench/trade_atlas.py --scenes %s --res %s --threads %s`: each technique's "
-             "knob grid swept with `weft sweep --reference auto`. Per scene and reference family, the cheapest setting "
-             "whose RMSE meets each threshold (median render time on this machine).", "",
+    command = " ".join(sys.argv[1:])
+    lines = ["# Trade atlas", "", "`/usr/bin/python3 bench/trade_atlas.py %s`: each technique's " % command +
+             "knob grid swept with `weft sweep --reference auto` at %s, %s thread(s). Per scene and reference family, " % (args.res, args.threads) +
+             "the cheapest setting whose RMSE meets each threshold (median render time on this machine); "
+             "each scene's folder has the whole table (sweep.md, sweep.csv) and its Pareto plot (sweep.png).", "",
              "| scene | family (reference) | RMSE <= | technique | setting | time (s) | RMSE |", "|---|---|---|---|---|---:|---:|"]
     for name in (list(available) if args.scenes == "all" else args.scenes.split(",")):
         if name not in available:
             print("trade: %s skipped (its data is not here)" % name)
             continue
         scene, techniques = available[name]
+        if args.techniques:
+            techniques = [t for t in techniques if t in args.techniques.split(",")]
         out = os.path.join(args.out, name)
         os.makedirs(out, exist_ok=True)
         seconds, rows = sweep(scene, techniques, out, args.res, args.threads)

@@ -5,7 +5,7 @@ again and measures it against the same reference, then sweeps each
 technique's whole knob grid and reports the fastest point that meets the
 target. Prints the tuned time against that best point, side by side.
 
-    bench/tune_check.py [--target rmse=0.01] [--res 256x256] [--threads 2] [--out DIR]
+    bench/tune_check.py [--target rmse=0.01] [--res 128x128] [--threads 2] [--out DIR]
 """
 import argparse
 import csv
@@ -37,11 +37,12 @@ def knobs_of(technique):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--target", default="rmse=0.01")
-    ap.add_argument("--res", default="256x256")
+    ap.add_argument("--res", default="128x128")
     ap.add_argument("--threads", default="2")
     ap.add_argument("--out", default=None)
     args = ap.parse_args()
     out = args.out or tempfile.mkdtemp(prefix="weft-tune-check-")
+    os.makedirs(out, exist_ok=True)
     cache = os.path.join(out, "refs")
     common = ["--res", args.res, "--threads", args.threads]
     metric, value = args.target.split("=")
@@ -64,7 +65,7 @@ def main():
             sweep += ["--vary", "%s=%s" % (key, ",".join(values))]
         d = os.path.join(out, "sweep-" + t["technique"])
         os.makedirs(d, exist_ok=True)
-        run_timed(sweep + ["--reference", "auto", "--no-plot", "-o", d] + common)
+        run_timed(sweep + ["--reference", refs[0], "--no-plot", "-o", d] + common)  # the family's one reference
         for r in csv.DictReader(open(os.path.join(d, "sweep.csv"))):
             if float(r[metric]) <= float(value) and (best is None or float(r["median_ms"]) < best[0]):
                 best = (float(r["median_ms"]), t["technique"], r)

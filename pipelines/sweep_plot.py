@@ -4,7 +4,7 @@
 Two panels, log-log: the median render time and the samples (rays and
 volume samples, a cost that does not depend on the machine) against the
 sweep's error metric. One colour per technique, each point labelled with
-its settings, the front (points no other point beats on both axes) drawn
+its settings (only the front's once there are more than 16), the front (points no other point beats on both axes) drawn
 as a line. `weft sweep` runs it after writing sweep.json; it needs
 Debian's python3-matplotlib (run it with /usr/bin/python3).
 """
@@ -21,6 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 HIGHER_IS_BETTER = {"psnr", "ssim"}
+LABEL_ALL = 16  # runs up to which every point is labelled
 
 
 def finite_positive(v):
@@ -33,11 +34,13 @@ def panel(ax, runs, metric, cost, front_key, xlabel):
         t = r["technique"]
         colours.setdefault(t, "C%d" % len(colours))
     for t, colour in colours.items():
-        pts = [(cost(r), r["error"][metric], r["label"]) for r in runs if r["technique"] == t]
+        pts = [(cost(r), r["error"][metric], r["label"], r["front"][front_key]) for r in runs if r["technique"] == t]
         pts = [p for p in pts if finite_positive(p[0]) and p[1] is not None and math.isfinite(p[1])]
         ax.scatter([p[0] for p in pts], [p[1] for p in pts], color=colour, label=t, s=22, zorder=3)
-        for x, y, label in pts:
-            ax.annotate(label, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points", color=colour)
+        # Labels for the front's points only once there are many (they would overlap); the table has them all.
+        for x, y, label, on_front in pts:
+            if on_front or len(runs) <= LABEL_ALL:
+                ax.annotate(label, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points", color=colour)
     front = sorted((cost(r), r["error"][metric]) for r in runs if r["front"][front_key] and finite_positive(cost(r)))
     front = [p for p in front if p[1] is not None and math.isfinite(p[1])]
     if front:

@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -139,17 +141,52 @@ bool plyHeaderLineOk(const std::string& line, std::uintmax_t fileBytes) {
     return false;
 }
 
+// What the header declares, element by element: Assimp writes past its
+// buffers when an element is declared twice or the vertices lack a
+// coordinate (found by fuzz_ply), so those are refused too.
+struct PlyElements {
+    std::map<std::string, std::set<std::string>> properties;  // element -> property names
+    std::string current;
+    // "" when the line fits the elements so far, else what is wrong.
+    std::string add(const std::string& line) {
+        std::istringstream words(line);
+        std::vector<std::string> w;
+        for (std::string word; words >> word;) w.push_back(word);
+        if (w.empty() || (w[0] != "element" && w[0] != "property")) return "";
+        if (w[0] == "element") {
+            current = w[1];
+            return properties.emplace(current, std::set<std::string>{}).second ? "" : "declares element '" + quoteless(current) + "' twice";
+        }
+        if (current.empty()) return "declares a property before any element";
+        return properties[current].insert(w.back()).second ? "" : "declares property '" + quoteless(w.back()) + "' twice";
+    }
+    std::string complete() const {
+        const auto v = properties.find("vertex");
+        if (v == properties.end()) return "declares no vertex element";
+        for (const char* c : {"x", "y", "z"})
+            if (!v->second.count(c)) return std::string("declares no vertex property ") + c;
+        return "";
+    }
+    static std::string quoteless(const std::string& s) { return s.size() > 40 ? s.substr(0, 40) + "..." : s; }
+};
+
 // Assimp spins on a header cut short and crashes on a malformed property
 // declaration: the header must be whole and well formed before it reads.
 void checkPlyHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     if (!std::getline(in, line) || line.rfind("ply", 0) != 0) fail(path, "is not a PLY file (no 'ply' on its first line)");
+    PlyElements elements;
     for (int n = 0; n < 10000 && std::getline(in, line); ++n) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line == "end_header") return;
+        if (line == "end_header") {
+            if (const std::string bad = elements.complete(); !bad.empty()) fail(path, "its PLY header " + bad);
+            return;
+        }
         if (in.eof()) break;  // a last line without its newline: the file is cut short
         if (!plyHeaderLineOk(line, fs::file_size(path))) fail(path, "PLY header line " + std::to_string(n + 2) + " is malformed");
+        if (const std::string bad = elements.add(line); !bad.empty())
+            fail(path, "PLY header line " + std::to_string(n + 2) + " " + bad);
     }
     fail(path, "its PLY header has no end_header line (the file is cut short or not PLY)");
 }

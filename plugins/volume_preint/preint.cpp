@@ -218,7 +218,7 @@ const TechniqueRegistrar registrar{{
     /*renders=*/Content::VolumesAndMeshes,
     /*bytesPerPixel=*/32,
     /*reference=*/{"volume.raymarch", {"step=0.1"}, 256},
-    /*knobs=*/{{"spacing", {"4", "2", "1", "0.5"}}, {"table_res", {"64", "256"}}, {"spp", {"1", "4", "16"}}},
+    /*knobs=*/{{"spacing", {"4", "2", "1", "0.5"}}, {"table_res", {"64", "256"}}, {"spp", {"1", "4", "16", "64"}}},
 }};
 
 }  // namespace

@@ -257,6 +257,19 @@ namespace {
 // text "pression" read as a size): OpenVDB's blosc reader allocated it. A
 // normal build's operator new throws std::bad_alloc, which the loader turns
 // into one line; sanitized builds get the same (cmake/sanitize_bounded_new.cpp).
+// "element face" declared twice, and vertices with x but no y or z: Assimp's
+// PLY reader wrote past its buffers (ASan's allocator found its own chunk
+// headers overwritten).
+TEST(FuzzRegressions, PlyElementDeclaredTwiceIsRefusedBeforeAssimp) {
+    const Outcome o = feed(plyFile, regressionFile("ply", "face-declared-twice-vertex-without-y.ply"));
+    expectRefused(o);
+    EXPECT_NE(o.message.find("declares element 'face' twice"), std::string::npos) << o.message;
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n";
+    const Outcome noZ = feed(plyFile, header + "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                               "0 0\n1 0\n0 1\n3 0 1 2\n");
+    EXPECT_NE(noZ.message.find("declares no vertex property z"), std::string::npos) << noZ.message;
+}
+
 TEST(FuzzRegressions, VdbBloscSizeOfEightExabytesIsRefused) {
     const Outcome o = feed(vdbFile, regressionFile("vdb", "blosc-claims-8-exabytes.vdb"));
     expectRefused(o);
