@@ -1,21 +1,21 @@
 #!/usr/bin/env python3
-"""Run a parameter grid through weft and gather every run's stats into one CSV.
+"""The farm form of `weft sweep`: one task per run, merged into the same tables and plot.
 
-    sweep.py INPUT --vary step=0.25,0.5,1 --vary spp=1,4 --out DIR [--csv FILE] [-- RENDER OPTIONS]
+    sweep.py --local -o DIR -- SWEEP ARGS
+    sweep.py [--logs LOGS] [--partition P] [--time T] [--cpus-per-task N] [--max-running M] [--dry-run] -o DIR -- SWEEP ARGS
 
-Every combination of the --vary values is one render (DIR/run_NNN.exr with
-DIR/run_NNN.json from --stats). Keys spp, seed, res and technique set those
-render options; any other key is a technique parameter (--set key=value).
-The CSV (default DIR/sweep.csv) has one row per run: run, exit status, the
-varied values, then every field of the stats JSON flattened with dots
-(technique, resolution, params.*, counters.*, timings_ms.*). It is written
-to a temporary name and renamed, so a killed sweep leaves no partial CSV.
+SWEEP ARGS are what `weft sweep` takes besides -o: the scene, --technique
+and --vary groups, --reference REF.exr|auto, --repeat, --metric, --res ...
+(docs/trade.md). `weft sweep ... --list` gives the number of runs N (every
+run is checked there, so a bad --vary fails before anything is submitted);
+then three jobs: `--prepare` renders the automatic references once, an
+array of N tasks runs `--run K` each (DIR/runs/run-K.json), and `--merge`
+writes DIR/sweep.csv, sweep.json, sweep.md and sweep.png from them, the
+same tables a one-process `weft sweep` writes. On Slurm they are chained
+with --dependency=afterok; --local runs them here one after the other.
 """
 
 import argparse
-import csv
-import itertools
-import json
 import os
 import subprocess
 import sys
@@ -24,81 +24,99 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import weftpipe  # noqa: E402
 from weftpipe import PipelineError  # noqa: E402
 
-OPTION_KEYS = {"spp": "--spp", "seed": "--seed", "res": "--res", "technique": "--technique"}
+
+def weft_sweep(weft, sweep_args, out, *extra):
+    return [weft, "sweep"] + list(sweep_args) + ["-o", out] + list(extra)
 
 
-def parse_vary(items):
-    axes = []
-    for item in items:
-        key, sep, values = item.partition("=")
-        if not sep or not key or not values or "" in values.split(","):
-            raise PipelineError("--vary '%s': expected key=v1,v2,..." % item)
-        if key in (k for k, _ in axes):
-            raise PipelineError("--vary %s given twice" % key)
-        axes.append((key, values.split(",")))
-    return axes
+def run_count(weft, sweep_args, out):
+    res = subprocess.run(weft_sweep(weft, sweep_args, out, "--list"), capture_output=True, text=True)
+    if res.returncode != 0:
+        raise PipelineError((res.stderr.strip() or res.stdout.strip()).replace("weft: error: ", ""))
+    first = res.stdout.split("\n", 1)[0]
+    if not first.endswith(" runs"):
+        raise PipelineError("weft sweep --list printed '%s'" % first)
+    return int(first.split()[0])
 
 
-def run_args(combo):
-    out = []
-    for key, value in combo:
-        out += [OPTION_KEYS[key], value] if key in OPTION_KEYS else ["--set", "%s=%s" % (key, value)]
-    return out
+def tasks(weft, sweep_args, out, count):
+    """(name, command) of every task, in the order they must run."""
+    yield "prepare", weft_sweep(weft, sweep_args, out, "--prepare")
+    for k in range(1, count + 1):
+        yield "run%d" % k, weft_sweep(weft, sweep_args, out, "--run", str(k))
+    yield "merge", [weft, "sweep", "--merge", "-o", out] + (["--no-plot"] if "--no-plot" in sweep_args else [])
 
 
-def flatten(prefix, value, row):
-    if isinstance(value, dict):
-        for k, v in value.items():
-            flatten(prefix + "." + k if prefix else k, v, row)
-    elif isinstance(value, list):
-        row[prefix] = "x".join(str(v) for v in value)
-    else:
-        row[prefix] = value
+def job_script(args, name, body, array=None, dependency=None):
+    lines = ["#!/bin/bash", "#SBATCH --job-name=%s" % name, "#SBATCH --cpus-per-task=%d" % args.cpus_per_task,
+             "#SBATCH --output=%s" % os.path.join(args.logs, name + ("_%A_%a.log" if array else "_%j.log"))]
+    if array:
+        lines.append("#SBATCH --array=%s" % (array + ("%%%d" % args.max_running if args.max_running else "")))
+    for flag, value in (("partition", args.partition), ("time", args.time)):
+        if value:
+            lines.append("#SBATCH --%s=%s" % (flag, value))
+    if dependency:
+        lines += ["#SBATCH --dependency=%s" % dependency, "#SBATCH --kill-on-invalid-dep=yes"]
+    return "\n".join(lines + ["set -euo pipefail", body]) + "\n"
 
 
-def write_csv(path, rows, first_columns):
-    columns = list(first_columns)
-    for row in rows:
-        columns += [k for k in row if k not in columns]
-    tmp = os.path.join(os.path.dirname(path) or ".", "." + os.path.basename(path) + ".tmp")
-    with open(tmp, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=columns)
-        w.writeheader()
-        w.writerows(rows)
-    os.replace(tmp, path)
+def submit(args, weft, sweep_args, count):
+    threads = ' --threads "${SLURM_CPUS_PER_TASK:-1}"'
+    prepare = "exec " + weftpipe.quote(weft_sweep(weft, sweep_args, args.out, "--prepare")) + threads
+    run = "exec " + weftpipe.quote(weft_sweep(weft, sweep_args, args.out)) + ' --run "$SLURM_ARRAY_TASK_ID"' + threads
+    merge = "exec " + weftpipe.quote([weft, "sweep", "--merge", "-o", args.out] + (["--no-plot"] if "--no-plot" in sweep_args else []))
+    if args.dry_run:
+        for name, text in (("prepare", job_script(args, args.name + ".prepare", prepare)),
+                           ("runs", job_script(args, args.name + ".runs", run, "1-%d" % count, "afterok:PREPARE")),
+                           ("merge", job_script(args, args.name + ".merge", merge, None, "afterok:RUNS"))):
+            print("# %s\n%s" % (name, text))
+        return 0
+    os.makedirs(os.path.join(args.logs, "scripts"), exist_ok=True)
+
+    def sbatch(name, text):
+        path = os.path.join(args.logs, "scripts", name + ".sh")
+        with open(path, "w") as f:
+            f.write(text)
+        res = subprocess.run(["sbatch", "--parsable", path], capture_output=True, text=True)
+        if res.returncode != 0:
+            raise PipelineError("sbatch %s failed: %s" % (path, res.stderr.strip() or res.stdout.strip()))
+        return res.stdout.strip().split(";")[0]
+
+    first = sbatch(args.name + ".prepare", job_script(args, args.name + ".prepare", prepare))
+    runs = sbatch(args.name + ".runs", job_script(args, args.name + ".runs", run, "1-%d" % count, "afterok:" + first))
+    last = sbatch(args.name + ".merge", job_script(args, args.name + ".merge", merge, None, "afterok:" + runs))
+    print("\n".join((first, runs, last)))
+    return 0
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
-    p.add_argument("input", help="scene .json, .vdb or builtin:NAME")
-    p.add_argument("--vary", action="append", required=True, help="key=v1,v2,... (repeatable: the grid is their product)")
-    p.add_argument("--out", required=True, help="folder for the runs' EXR and stats")
-    p.add_argument("--csv", help="CSV to write (default OUT/sweep.csv)")
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("-o", "--out", required=True, help="the sweep's folder")
+    p.add_argument("--local", action="store_true", help="run the tasks here, one after the other")
+    p.add_argument("--name", default="weft-sweep", help="job name (default weft-sweep)")
+    p.add_argument("--logs", default="logs", help="folder of the task logs (default logs)")
+    p.add_argument("--partition", help="Slurm partition")
+    p.add_argument("--time", help="time limit per task, e.g. 00:30:00")
+    p.add_argument("--cpus-per-task", type=int, default=1, help="cores per task; weft uses as many threads")
+    p.add_argument("--max-running", type=int, help="at most this many run tasks at once (array %%N)")
+    p.add_argument("--dry-run", action="store_true", help="print the sbatch scripts, submit nothing")
     p.add_argument("--weft", help="weft executable (default $WEFT, else weft on PATH)")
-    mine, extra = weftpipe.split_at_dashes(sys.argv[1:])
+    mine, sweep_args = weftpipe.split_at_dashes(sys.argv[1:])
     args = p.parse_args(mine)
-    axes = parse_vary(args.vary)
+    if not sweep_args:
+        raise PipelineError("nothing to sweep: give -- SCENE --technique ... --vary ... --reference ...")
+    if "-o" in sweep_args or "--out" in sweep_args:
+        raise PipelineError("-o belongs to sweep.py, before the --")
     weft = weftpipe.weft_binary(args.weft)
-    os.makedirs(args.out, exist_ok=True)
-    rows, failed = [], 0
-    combos = list(itertools.product(*[[(k, v) for v in values] for k, values in axes]))
-    for n, combo in enumerate(combos, 1):
-        name = os.path.join(args.out, "run_%03d" % n)
-        cmd = [weft, "render", args.input] + extra + run_args(combo) + ["-o", name + ".exr", "--stats", name + ".json"]
-        res = subprocess.run(cmd, capture_output=True, text=True)
-        row = {"run": n, "status": res.returncode}
-        row.update({k: v for k, v in combo})
-        if res.returncode == 0:
-            with open(name + ".json") as f:
-                flatten("", json.load(f), row)
-        else:
-            failed += 1
-            print("sweep: run %d (%s) failed: %s" % (n, " ".join(run_args(combo)), res.stderr.strip()), file=sys.stderr)
-        rows.append(row)
-    out_csv = args.csv or os.path.join(args.out, "sweep.csv")
-    write_csv(out_csv, rows, ["run", "status"] + [k for k, _ in axes])
-    print("sweep: %d runs, %d failed -> %s" % (len(rows), failed, out_csv))
-    return 1 if failed else 0
+    weft = os.path.abspath(weft) if os.path.sep in weft else weft
+    count = run_count(weft, sweep_args, args.out)
+    if not args.local:
+        return submit(args, weft, sweep_args, count)
+    failed = weftpipe.run_local(list(tasks(weft, sweep_args, args.out, count)), os.path.join(args.out, "logs"))
+    if failed:
+        raise PipelineError("%d of %d tasks failed (logs in %s)" % (failed, count + 2, os.path.join(args.out, "logs")))
+    print("sweep: %d runs -> %s" % (count, os.path.join(args.out, "sweep.csv")))
+    return 0
 
 
 if __name__ == "__main__":

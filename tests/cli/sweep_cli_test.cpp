@@ -23,7 +23,8 @@ nlohmann::json readJson(const std::filesystem::path& p) {
     return nlohmann::json::parse(in);
 }
 
-// The CSV without its time columns (median_ms, min_ms, max_ms).
+// The CSV without what depends on the clock: median_ms, min_ms, max_ms and
+// front_time (the front of time against error).
 std::string csvWithoutTimes(const std::filesystem::path& p) {
     std::ifstream in(p);
     std::string out, line;
@@ -34,7 +35,8 @@ std::string csvWithoutTimes(const std::filesystem::path& p) {
         for (std::string c; std::getline(s, c, ',');) cells.push_back(c);
         if (drop.empty())
             for (std::size_t i = 0; i < cells.size(); ++i)
-                if (cells[i].size() > 3 && cells[i].compare(cells[i].size() - 3, 3, "_ms") == 0) drop.push_back(i);
+                if ((cells[i].size() > 3 && cells[i].compare(cells[i].size() - 3, 3, "_ms") == 0) || cells[i] == "front_time")
+                    drop.push_back(i);
         for (std::size_t i = 0; i < cells.size(); ++i)
             if (std::find(drop.begin(), drop.end(), i) == drop.end()) out += cells[i] + ",";
         out += "\n";
@@ -129,4 +131,28 @@ TEST(SweepCli, AutoReferenceIsRenderedOnceAndCachedByContentAndSettings) {
     EXPECT_EQ(std::filesystem::last_write_time(first), stamp);
     ASSERT_EQ(runWeft(sweep + " --seed 9").status, 0);  // another seed: another reference
     EXPECT_EQ(refs().size(), 2u);
+}
+
+// The farm form: --list sizes the array, --prepare renders the references,
+// each --run K writes one run's file, --merge writes the same tables as the
+// sweep run in one process (times aside).
+TEST(SweepCli, FarmTasksMergeIntoTheSameTables) {
+    TempDir dir;
+    const std::string sweep = "sweep " + kScene + " --technique volume.raymarch --vary step=0.5,1 --vary jitter=false,true "
+                              "--reference auto --no-plot -o ";
+    ASSERT_EQ(runWeft(sweep + (dir / "one").string()).status, 0);
+    const std::string farm = (dir / "farm").string();
+    const auto list = runWeft(sweep + farm + " --list");
+    ASSERT_EQ(list.status, 0) << list.output;
+    EXPECT_EQ(list.output.rfind("4 runs\n1 volume.raymarch step=0.5 jitter=false\n", 0), 0u) << list.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "farm"));  // --list writes nothing
+    ASSERT_EQ(runWeft(sweep + farm + " --prepare").status, 0);
+    for (int k : {4, 2, 1}) ASSERT_EQ(runWeft(sweep + farm + " --run " + std::to_string(k)).status, 0) << k;
+    const auto early = runWeft("sweep --merge --no-plot -o " + farm);
+    EXPECT_NE(early.status, 0);
+    EXPECT_NE(early.output.find("run 3 is missing"), std::string::npos) << early.output;
+    ASSERT_EQ(runWeft(sweep + farm + " --run 3").status, 0);
+    ASSERT_EQ(runWeft("sweep --merge --no-plot -o " + farm).status, 0);
+    EXPECT_EQ(csvWithoutTimes(dir / "one" / "sweep.csv"), csvWithoutTimes(dir / "farm" / "sweep.csv"));
+    EXPECT_NE(runWeft(sweep + farm + " --run 5").output.find("the sweep has 4 runs"), std::string::npos);
 }

@@ -6,6 +6,7 @@ that task fails with its error in its log while frames 1 and 3 render.
 One frame is then deleted and resume.py resubmits just that frame.
 Fails, with the reason, when the cluster cannot start. WEFT names the weft binary."""
 
+import csv
 import os
 import shutil
 import subprocess
@@ -74,6 +75,25 @@ def check_bad_frame(d):
         fail("frames 1 and 3 should render silently: %r" % logs)
 
 
+SWEEP = ["builtin:sphere", "--res", "12x8", "--technique", "volume.raymarch", "--vary", "step=0.5,1", "--vary", "jitter=false,true",
+         "--reference", "auto", "--no-plot"]
+
+
+def check_sweep(d):
+    """The farm sweep's tables equal a one-process sweep's, times aside."""
+    one = run([WEFT, "sweep"] + SWEEP + ["-o", os.path.join(d, "sweep-one")])
+    if one.returncode != 0:
+        fail("one-process sweep: " + one.stderr)
+
+    def rows(folder):
+        with open(os.path.join(d, folder, "sweep.csv")) as f:
+            return [{k: v for k, v in r.items() if not k.endswith("_ms") and k != "front_time"} for r in csv.DictReader(f)]
+    if not os.path.exists(os.path.join(d, "sweep-farm", "sweep.csv")):
+        fail("the farm sweep wrote no sweep.csv; logs: %r" % os.listdir(os.path.join(d, "sweeplogs")))
+    if rows("sweep-farm") != rows("sweep-one"):
+        fail("the farm sweep's table differs from the one-process sweep's")
+
+
 def main():
     d = tempfile.mkdtemp(prefix="weft-slurm-test-")
     os.chmod(d, 0o755)  # munged runs as user munge and must reach its folder inside
@@ -103,9 +123,13 @@ def main():
             f.write("not a vdb")
         bad_ids = submit("submit_slurm.py", ["--frames", "1-3", "-o", "seq/out.#.exr", "--logs", "badlogs", "--name", "seq",
                                              "--", "seq/smoke.#.vdb", "--res", "16x16"], env, d)
-        wait_for(ids + bad_ids, env, os.path.join(d, "logs"))
+        sweep_ids = submit("sweep.py", ["-o", "sweep-farm", "--logs", "sweeplogs", "--"] + SWEEP, env, d)
+        if len(sweep_ids) != 3:
+            fail("expected 3 sweep job ids (prepare, runs, merge), got %r" % sweep_ids)
+        wait_for(ids + bad_ids + sweep_ids, env, os.path.join(d, "logs"))
         check_frames(d, env)
         check_bad_frame(d)
+        check_sweep(d)
         logs = sorted(n for n in os.listdir(os.path.join(d, "logs")) if n.endswith(".log"))
         if len(logs) != 12:
             fail("expected 12 task logs (4 frames x 2 tiles + 4 merges), got %r" % logs)
@@ -117,7 +141,8 @@ def main():
         new_logs = sorted(n for n in os.listdir(os.path.join(d, "logs")) if n.endswith(".log") and n not in logs)
         if len(new_logs) != 3 or not all(n.endswith("_3.log") for n in new_logs):
             fail("resume should run frame 3 only (2 tiles + merge), ran %r" % new_logs)
-        print("slurm_local_check: ok (4 frames x 2 tiles on Slurm == local renders; resume redid frame 3 only)")
+        print("slurm_local_check: ok (4 frames x 2 tiles on Slurm == local renders; resume redid frame 3 only; "
+              "a 4-run sweep as prepare, array and merge == the one-process sweep)")
     finally:
         if started:
             stop = run(["bash", os.path.join(ROOT, "scripts", "slurm-local.sh"), "stop", cluster])

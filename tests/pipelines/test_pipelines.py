@@ -179,29 +179,41 @@ class Resume(unittest.TestCase):
 
 
 class Sweep(unittest.TestCase):
-    def test_grid_runs_collect_into_one_csv(self):
+    SWEEP = ["builtin:sphere", "--res", "8x6", "--technique", "volume.raymarch", "--vary", "step=0.5,1", "--vary", "spp=1,2",
+             "--reference", "auto", "--no-plot"]
+
+    def test_local_tasks_merge_into_the_sweeps_tables(self):
         with tempfile.TemporaryDirectory() as d:
-            r = script("sweep.py", "builtin:sphere", "--vary", "step=0.5,1", "--vary", "spp=1,2", "--out", d, "--", "--res", "8x6")
-            self.assertEqual(r.returncode, 0, r.stderr)
+            r = script("sweep.py", "--local", "-o", d, "--", *self.SWEEP)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
             with open(os.path.join(d, "sweep.csv")) as f:
                 rows = list(csv.DictReader(f))
             self.assertEqual([(x["step"], x["spp"]) for x in rows], [("0.5", "1"), ("0.5", "2"), ("1", "1"), ("1", "2")])
             for x in rows:
-                self.assertEqual(x["status"], "0")
-                self.assertEqual(x["params.step"], x["step"])
                 self.assertEqual(int(x["counters.rays.camera"]), 48 * int(x["spp"]))
-                self.assertIn("timings_ms.render", x)
-            samples = {(x["step"], x["spp"]): int(x["counters.volume.samples"]) for x in rows}
+                self.assertGreaterEqual(float(x["rmse"]), 0)
+            samples = {(x["step"], x["spp"]): int(x["samples"]) for x in rows}
             self.assertGreater(samples[("0.5", "1")], samples[("1", "1")])
+            self.assertEqual(len(os.listdir(os.path.join(d, "runs"))), 4)
 
-    def test_a_failing_run_is_a_row_with_its_status(self):
+    def test_slurm_jobs_are_chained(self):
         with tempfile.TemporaryDirectory() as d:
-            r = script("sweep.py", "builtin:sphere", "--vary", "step=0.5,-1", "--out", d, "--", "--res", "4x4")
+            r = script("sweep.py", "--dry-run", "--max-running", "2", "-o", d, "--", *self.SWEEP)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("--prepare", r.stdout)
+            self.assertIn("#SBATCH --array=1-4%2", r.stdout)
+            self.assertIn('--run "$SLURM_ARRAY_TASK_ID"', r.stdout)
+            self.assertIn("#SBATCH --dependency=afterok:RUNS", r.stdout)
+            self.assertIn("sweep --merge -o", r.stdout)
+
+    def test_a_bad_vary_fails_before_anything_is_submitted(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "s")
+            r = script("sweep.py", "--dry-run", "-o", out, "--", "builtin:sphere", "--vary", "step=0.5,-1", "--reference", "auto")
             self.assertEqual(r.returncode, 1)
-            with open(os.path.join(d, "sweep.csv")) as f:
-                rows = list(csv.DictReader(f))
-            self.assertEqual([x["status"] for x in rows], ["0", "1"])
-            self.assertIn("run 2", r.stderr)
+            self.assertIn("step", r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertFalse(os.path.exists(out))
 
 
 if __name__ == "__main__":

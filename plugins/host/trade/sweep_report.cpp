@@ -1,6 +1,7 @@
 #include "plugins/host/trade/sweep_report.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -73,7 +74,44 @@ nlohmann::ordered_json resultJson(const SweepResult& r, bool byTime, bool bySamp
     return j;
 }
 
+SweepResult resultFromJson(const nlohmann::ordered_json& j) {
+    SweepResult r;
+    r.run.index = j.at("run").get<int>() - 1;
+    r.run.technique = j.at("technique").get<std::string>();
+    if (j.contains("varied"))
+        for (const auto& [k, v] : j.at("varied").items()) r.run.varied.emplace_back(k, v.get<std::string>());
+    r.params = j.at("params").get<std::string>();
+    const auto& t = j.at("time_ms");
+    r.times = {t.at("median").get<double>(), t.at("min").get<double>(), t.at("max").get<double>()};
+    r.repeatMs = t.at("repeats").get<std::vector<double>>();
+    r.samples = j.at("samples").get<std::int64_t>();
+    const auto& e = j.at("error");
+    const auto value = [&](const char* k) { return e.at(k).is_null() ? std::numeric_limits<double>::infinity() : e.at(k).get<double>(); };
+    r.error = {value("rmse"), value("relmse"), value("psnr"), value("ssim"), value("maxabs"), value("flip")};
+    for (const auto& [k, v] : j.at("counters").items()) r.counters[k] = v.get<std::int64_t>();
+    return r;
+}
+
 }  // namespace
+
+void writeSweepRunJson(const std::string& path, const SweepRunFile& f) {
+    nlohmann::ordered_json j{{"scene", f.info.scene},   {"reference", f.info.reference}, {"metric", tradeMetricName(f.info.metric)},
+                             {"repeat", f.info.repeat}, {"of", f.runCount},            {"result", resultJson(f.result, false, false)}};
+    writeText(path, j.dump(2) + "\n");
+}
+
+SweepRunFile readSweepRunJson(const std::string& path) {
+    std::ifstream in(path);
+    try {
+        const nlohmann::ordered_json j = nlohmann::ordered_json::parse(in);
+        SweepRunFile f{resultFromJson(j.at("result")), j.at("of").get<int>(), {}};
+        f.info = {j.at("scene").get<std::string>(), j.at("reference").get<std::string>(),
+                  parseTradeMetric(j.at("metric").get<std::string>()), j.at("repeat").get<int>()};
+        return f;
+    } catch (const nlohmann::json::exception&) {
+        throw Error("'" + path + "': not a run of weft sweep --run (unreadable or a field is missing)");
+    }
+}
 
 SweepFronts sweepFronts(const std::vector<SweepResult>& results, TradeMetric metric) {
     std::vector<std::pair<double, double>> time, samples;

@@ -24,6 +24,16 @@ struct SweepReportInfo {
 void writeSweepCsv(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts);
 void writeSweepJson(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
                     const SweepReportInfo& info);
+// The farm form (weft sweep --run K / --merge): one run's result in its own
+// file, DIR/runs/run-K.json, with what the merge needs to write the tables.
+struct SweepRunFile {
+    SweepResult result;
+    int runCount = 0;
+    SweepReportInfo info;
+};
+void writeSweepRunJson(const std::string& path, const SweepRunFile& file);
+SweepRunFile readSweepRunJson(const std::string& path);  // throws naming the file and what is missing
+
 void writeSweepMarkdown(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
                         const SweepReportInfo& info);
 
