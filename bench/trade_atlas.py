@@ -89,12 +89,7 @@ def main():
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix="weft-trade-")  # the converted aneurism and scene files
     available = scenes(args.data if os.path.isdir(args.data) else None, work)
-    command = " ".join(sys.argv[1:])
-    lines = ["# Trade atlas", "", "`/usr/bin/python3 bench/trade_atlas.py %s`: each technique's " % command +
-             "knob grid swept with `weft sweep --reference auto` at %s, %s thread(s). Per scene and reference family, " % (args.res, args.threads) +
-             "the cheapest setting whose RMSE meets each threshold (median render time on this machine); "
-             "each scene's folder has the whole table (sweep.md, sweep.csv) and its Pareto plot (sweep.png).", "",
-             "| scene | family (reference) | RMSE <= | technique | setting | time (s) | RMSE |", "|---|---|---|---|---|---:|---:|"]
+    command = "/usr/bin/python3 bench/trade_atlas.py " + " ".join(sys.argv[1:])
     for name in (list(available) if args.scenes == "all" else args.scenes.split(",")):
         if name not in available:
             print("trade: %s skipped (its data is not here)" % name)
@@ -110,14 +105,35 @@ def main():
         keys = [k for k in rows[0].keys() if k not in ("run", "technique", "params") and not k.startswith("counters.")
                 and k not in ("median_ms", "min_ms", "max_ms", "samples", "rmse", "relmse", "psnr", "ssim", "maxabs",
                               "flip", "front_time", "front_samples")]
+        lines = ["<!-- %s: %s at %s, %s thread(s) -->" % (name, command, args.res, args.threads)]
         for family in dict.fromkeys(families.values()):
             for text, limit in THRESHOLDS:
                 r = cheapest(rows, families, family, limit)
                 lines.append("| %s | %s | %s | %s | %s | %s | %s |" % (
                     name, family, text, r["technique"] if r else "none", label(r, keys) if r else "",
                     "%.3g" % (float(r["median_ms"]) / 1000) if r else "", "%.3g" % float(r["rmse"]) if r else ""))
-    with open(os.path.join(args.out, "README.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+        with open(os.path.join(out, "cheapest.md"), "w") as f:
+            f.write("\n".join(lines) + "\n")
+    write_index(args.out)
+
+
+def write_index(folder):
+    """docs/trade/README.md: every scene folder's cheapest settings, with the command that made them."""
+    lines = ["# Trade atlas", "", "Each scene's folder holds the whole sweep (sweep.md, sweep.csv) and its Pareto plot "
+             "(sweep.png): each technique's knob grid (`weft help NAME`) swept with `weft sweep --reference auto`. "
+             "Below, per scene and reference family, the cheapest setting whose RMSE meets each threshold (median "
+             "render time on the machine that ran it; the command is in the scene's `cheapest.md`).", "",
+             "| scene | family (reference) | RMSE <= | technique | setting | time (s) | RMSE |", "|---|---|---|---|---|---:|---:|"]
+    commands = []
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name, "cheapest.md")
+        if os.path.exists(path):
+            with open(path) as f:
+                text = f.read().splitlines()
+            commands.append("- %s" % text[0][5:-4])
+            lines += text[1:]
+    with open(os.path.join(folder, "README.md"), "w") as f:
+        f.write("\n".join(lines + ["", "Commands:", ""] + commands) + "\n")
     print("\n".join(lines))
 
 

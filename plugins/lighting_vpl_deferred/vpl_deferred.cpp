@@ -256,7 +256,7 @@ const TechniqueRegistrar registrar{{
     /*renders=*/Content::VolumesAndMeshes,
     /*bytesPerPixel=*/224,  // G-buffer, its split copy, AOVs (217 measured)
     /*reference=*/{"mesh.pathtrace", {}, 4096},
-    /*knobs=*/{{"vpls", {"30", "120", "480", "1920"}}, {"interleave", {"8x8", "4x4", "1x1"}}},
+    /*knobs=*/{{"vpls", {"64", "256", "1024", "4096"}}, {"interleave", {"8x8", "4x4", "1x1"}}},
 }};
 
 }  // namespace
