@@ -65,6 +65,12 @@ def sweep(scene, techniques, out, res, threads):
         args += ["--technique", t] + sum((["--vary", "%s=%s" % (k, v)] for k, v in knobs_of(t)), [])
     seconds, _ = run_timed(args)
     shutil.rmtree(os.path.join(out, "references"), ignore_errors=True)  # rendered EXRs stay out of docs/
+    for name in ("sweep.md", "sweep.json", "sweep.csv"):  # paths as a clone of the project names them
+        path = os.path.join(out, name)
+        with open(path) as f:
+            text = f.read().replace(ROOT + os.sep, "").replace(os.path.dirname(scene) + os.sep, "")
+        with open(path, "w") as f:
+            f.write(text)
     with open(os.path.join(out, "sweep.csv")) as f:
         return seconds, list(csv.DictReader(f))
 
