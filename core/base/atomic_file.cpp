@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <signal.h>
 #include <unistd.h>
 
@@ -101,6 +102,15 @@ void AtomicOutput::commit() {
     fs::rename(temp_, final_, ec);
     if (ec) throw Error("cannot write '" + final_ + "': " + ec.message());
     committed_ = true;
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text, const std::string& what) {
+    AtomicOutput file(path);
+    std::ofstream os(file.tempPath(), std::ios::binary);
+    os << text;
+    os.close();
+    if (!os) throw Error(what + " '" + path + "': write failed");
+    file.commit();
 }
 
 void checkOutputPath(const std::string& path, const std::string& what) {

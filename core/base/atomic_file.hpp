@@ -30,6 +30,10 @@ private:
 // process as the signal would have. The host installs this once at start.
 void removeTemporaryOutputsOnInterrupt();
 
+// Writes `text` to `path` through an AtomicOutput; a failed write throws
+// "<what> '<path>': write failed" and leaves no file.
+void writeTextAtomically(const std::string& path, const std::string& text, const std::string& what);
+
 // Fails early (before a long render) when the output cannot be written:
 // missing folder, or an extension no image writer handles.
 void checkOutputPath(const std::string& path, const std::string& what);

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "core/base/atomic_file.hpp"
@@ -119,12 +118,7 @@ void runReport(const ReportOptions& o) {
     }
     printTable(rows, counts);
     if (o.output.empty()) return;
-    AtomicOutput file(o.output);
-    std::ofstream os(file.tempPath());
-    os << csvText(rows);
-    os.close();
-    if (!os) throw Error("output '" + o.output + "': write failed");
-    file.commit();
+    writeTextAtomically(o.output, csvText(rows), "output");
     std::printf("\nwrote %s\n", o.output.c_str());
 }
 

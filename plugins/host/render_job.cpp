@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -109,12 +108,7 @@ void writeStats(const RenderRequest& r, const RenderOutcome& out, int threads) {
     j["counters"] = nlohmann::ordered_json::object();
     for (const auto& [k, v] : out.counters) j["counters"][k] = v;
     for (const auto& [k, v] : out.timingsMs) j["timings_ms"][k] = v;
-    AtomicOutput file(r.stats);
-    std::ofstream os(file.tempPath());
-    os << j.dump(2) << "\n";
-    os.close();
-    if (!os) throw Error("stats '" + r.stats + "': write failed");
-    file.commit();
+    writeTextAtomically(r.stats, j.dump(2) + "\n", "stats");
 }
 
 // A library's exception leaves a stage as a weft::Error that says which

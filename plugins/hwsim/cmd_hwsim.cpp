@@ -4,7 +4,6 @@
 // `weft hwsim --list-profiles` and `--list-replays` list what is built in;
 // `weft hwsim REPLAY --params` prints the replay's parameter table.
 #include <cstdio>
-#include <fstream>
 #include <map>
 
 #include "core/base/atomic_file.hpp"
@@ -33,15 +32,6 @@ void listReplays() {
     for (const hwsim::ReplayInfo* r : hwsim::replays().all()) std::printf("%-16s %s\n", r->name.c_str(), r->summary.c_str());
 }
 
-void writeText(const std::string& path, const std::string& text) {
-    AtomicOutput file(path);
-    std::ofstream os(file.tempPath());
-    os << text;
-    os.close();
-    if (!os) throw Error("stats '" + path + "': write failed");
-    file.commit();
-}
-
 void runHwsim(const HwsimOptions& o) {
     if (o.listProfiles) return listProfiles();
     if (o.listReplays) return listReplays();
@@ -60,7 +50,7 @@ void runHwsim(const HwsimOptions& o) {
     if (!o.image.empty()) checkOutputPath(o.image, "-o");
     const hwsim::ReplayResult result = info.run(profile, params);
     std::printf("%s under %s\n%s", info.name.c_str(), profile.name.c_str(), hwsim::replayTable(result).c_str());
-    if (!o.stats.empty()) writeText(o.stats, hwsim::replayStatsJson(info.name, profile, params, result));
+    if (!o.stats.empty()) writeTextAtomically(o.stats, hwsim::replayStatsJson(info.name, profile, params, result), "stats");
     if (!o.image.empty()) {
         if (!result.image) throw Error("hwsim: replay '" + info.name + "' makes no image (-o)");
         writeExr(*result.image, o.image, {{"weft:hwsim:replay", info.name}, {"weft:hwsim:profile", profile.name}});

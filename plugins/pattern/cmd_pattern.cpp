@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/error.hpp"
@@ -52,15 +51,6 @@ std::vector<Vec2> unitPoints(const PatternOptions& o, std::uint64_t seed, int& t
                 out.push_back({(x + double(p.x)) / tileW, (y + double(p.y)) / tileH});
             }
     return out;
-}
-
-void writeText(const std::string& path, const std::string& text, const char* what) {
-    AtomicOutput file(path);
-    std::ofstream os(file.tempPath());
-    os << text;
-    os.close();
-    if (!os) throw Error(std::string(what) + " '" + path + "': write failed");
-    file.commit();
 }
 
 std::string radialCsv(const std::vector<RadialBin>& bins, int tileW) {
@@ -139,7 +129,7 @@ void runPattern(const PatternOptions& o) {
         std::string text = "x,y\n";
         char line[64];
         for (const Vec2& p : pts) std::snprintf(line, sizeof line, "%.9f,%.9f\n", p.x, p.y), text += line;
-        writeText(o.pointsCsv, text, "points");
+        writeTextAtomically(o.pointsCsv, text, "points");
     }
     if (o.output.empty()) return;
     std::vector<double> sum;
@@ -154,7 +144,7 @@ void runPattern(const PatternOptions& o) {
                                   {"weft:seeds", std::to_string(o.seeds)}, {"weft:tile", std::to_string(tileW) + "x" + std::to_string(tileH)}});
     std::string csv = o.csv;
     if (csv.empty()) csv = o.output.substr(0, o.output.size() - 4) + "_radial.csv";
-    writeText(csv, radialCsv(radialAverage(sum, R), tileW), "csv");
+    writeTextAtomically(csv, radialCsv(radialAverage(sum, R), tileW), "csv");
     if (!o.preview.empty()) writePreview(previewImage(pts, spectrum), o.preview);
     std::printf("periodogram          %s (%dx%d, %d seeds), radial average %s\n", o.output.c_str(), 2 * R + 1, 2 * R + 1,
                 o.seeds, csv.c_str());

@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -125,9 +124,7 @@ void writeChoice(const std::string& path, const std::vector<TuneChoice>& choices
         if (c.closest && !c.best) e["closest"] = resultJson(*c.closest);
         j["techniques"].push_back(e);
     }
-    AtomicOutput file(path);
-    std::ofstream(file.tempPath()) << j.dump(2) << "\n";
-    file.commit();
+    writeTextAtomically(path, j.dump(2) + "\n", "--json");
 }
 
 void printChoices(const std::vector<TuneChoice>& choices, const TuneTarget& t) {

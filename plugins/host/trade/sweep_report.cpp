@@ -16,15 +16,6 @@ namespace weft {
 
 namespace {
 
-void writeText(const std::string& path, const std::string& text) {
-    AtomicOutput file(path);
-    std::ofstream os(file.tempPath(), std::ios::binary);
-    os << text;
-    os.close();
-    if (!os) throw Error("'" + path + "': write failed");
-    file.commit();
-}
-
 std::string number(double v) {
     char text[32];
     std::snprintf(text, sizeof text, "%.9g", v);
@@ -97,7 +88,7 @@ SweepResult resultFromJson(const nlohmann::ordered_json& j) {
 void writeSweepRunJson(const std::string& path, const SweepRunFile& f) {
     nlohmann::ordered_json j{{"scene", f.info.scene},   {"reference", f.info.reference}, {"metric", tradeMetricName(f.info.metric)},
                              {"repeat", f.info.repeat}, {"of", f.runCount},            {"result", resultJson(f.result, false, false)}};
-    writeText(path, j.dump(2) + "\n");
+    writeTextAtomically(path, j.dump(2) + "\n", "sweep");
 }
 
 SweepRunFile readSweepRunJson(const std::string& path) {
@@ -151,7 +142,7 @@ void writeSweepCsv(const std::string& path, const std::vector<SweepResult>& resu
         }
         os << "\n";
     }
-    writeText(path, os.str());
+    writeTextAtomically(path, os.str(), "sweep");
 }
 
 void writeSweepJson(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
@@ -159,7 +150,7 @@ void writeSweepJson(const std::string& path, const std::vector<SweepResult>& res
     nlohmann::ordered_json j{{"scene", info.scene}, {"reference", info.reference}, {"metric", tradeMetricName(info.metric)},
                              {"repeat", info.repeat}, {"runs", nlohmann::ordered_json::array()}};
     for (std::size_t i = 0; i < results.size(); ++i) j["runs"].push_back(resultJson(results[i], fronts.byTime[i], fronts.bySamples[i]));
-    writeText(path, j.dump(2) + "\n");
+    writeTextAtomically(path, j.dump(2) + "\n", "sweep");
 }
 
 void writeSweepMarkdown(const std::string& path, const std::vector<SweepResult>& results, const SweepFronts& fronts,
@@ -180,7 +171,7 @@ void writeSweepMarkdown(const std::string& path, const std::vector<SweepResult>&
                       r.error.psnr, r.error.ssim, r.error.flip, fronts.byTime[i] ? "*" : "");
         os << row;
     }
-    writeText(path, os.str());
+    writeTextAtomically(path, os.str(), "sweep");
 }
 
 }  // namespace weft
