@@ -280,10 +280,11 @@ void checkInputs(const Image& test, const Image& reference, double ppd) {
 FlipResult flipError(const Image& test, const Image& reference, double pixelsPerDegree) {
     checkInputs(test, reference, pixelsPerDegree);
     const std::array<Plane, 3> t = toYcxcz(test), r = toYcxcz(reference);
-    std::array<Plane, 3> tf = t, rf = r;
-    for (int i = 0; i < 3; ++i)
-        tf[i] = csfFilter(t[i], kCsf[i], pixelsPerDegree), rf[i] = csfFilter(r[i], kCsf[i], pixelsPerDegree);
-    const Plane ec = colorError(tf, rf), ef = featureError(achromatic(t[0]), achromatic(r[0]), pixelsPerDegree);
+    const auto filtered = [&](const std::array<Plane, 3>& p) {
+        return std::array<Plane, 3>{csfFilter(p[0], kCsf[0], pixelsPerDegree), csfFilter(p[1], kCsf[1], pixelsPerDegree),
+                                    csfFilter(p[2], kCsf[2], pixelsPerDegree)};
+    };
+    const Plane ec = colorError(filtered(t), filtered(r)), ef = featureError(achromatic(t[0]), achromatic(r[0]), pixelsPerDegree);
     FlipResult result{0, Image(test.width(), test.height(), {"FLIP"})};
     double total = 0;
     for (std::size_t i = 0; i < ec.v.size(); ++i) {

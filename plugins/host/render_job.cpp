@@ -129,11 +129,11 @@ auto inStage(const std::string& stage, F&& f) -> decltype(f()) {
     }
 }
 
+}  // namespace
+
 int effectiveThreads(int requested) {
     return requested > 0 ? requested : int(std::max(1u, std::thread::hardware_concurrency()));
 }
-
-}  // namespace
 
 double physicalMemoryGiB() { return physicalMemoryBytes() / double(1 << 30); }
 

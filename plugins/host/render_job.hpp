@@ -43,6 +43,8 @@ struct LoadedScene {
     double loadMs = 0;  // reported as the "load" timing of each render
 };
 std::optional<double> requestAspect(const RenderRequest& request);
+// --threads as a count: 0 means every core.
+int effectiveThreads(int requested);
 LoadedScene loadRequestScene(const RenderRequest& request);
 RenderOutcome renderLoadedScene(const RenderRequest& request, const LoadedScene& loaded);
 

@@ -156,3 +156,16 @@ TEST(SweepCli, FarmTasksMergeIntoTheSameTables) {
     EXPECT_EQ(csvWithoutTimes(dir / "one" / "sweep.csv"), csvWithoutTimes(dir / "farm" / "sweep.csv"));
     EXPECT_NE(runWeft(sweep + farm + " --run 5").output.find("the sweep has 4 runs"), std::string::npos);
 }
+
+// --prepare renders each run's reference on the scene framed for that run's
+// aspect, as a one-process sweep does: the farm's errors are the same.
+TEST(SweepCli, FarmPrepareFramesEveryAspect) {
+    TempDir dir;
+    const std::string sweep = "sweep builtin:sphere --technique volume.raymarch --vary res=24x16,12x16 --reference auto --no-plot -o ";
+    ASSERT_EQ(runWeft(sweep + (dir / "one").string()).status, 0);
+    const std::string farm = (dir / "farm").string();
+    ASSERT_EQ(runWeft(sweep + farm + " --prepare").status, 0);
+    for (int k : {1, 2}) ASSERT_EQ(runWeft(sweep + farm + " --run " + std::to_string(k)).status, 0) << k;
+    ASSERT_EQ(runWeft("sweep --merge --no-plot -o " + farm).status, 0);
+    EXPECT_EQ(csvWithoutTimes(dir / "one" / "sweep.csv"), csvWithoutTimes(dir / "farm" / "sweep.csv"));
+}

@@ -12,13 +12,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
-#include <thread>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/error.hpp"
 #include "core/base/progress.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/trade/sweep_report.hpp"
+#include "plugins/host/trade/trade_options.hpp"
 
 namespace weft {
 
@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 struct SweepCommand {
     std::string input, outDir, reference, metric = "rmse";
-    std::vector<std::pair<const RenderOption*, std::string>> renderOptions;  // --res, --spp, --seed, --set, --threads
+    TradeRenderOptions renderOptions;
     std::vector<SweepGroup> groups{SweepGroup{}};  // the first: --vary before any --technique
     int repeat = 1;
     bool plot = true;
@@ -36,14 +36,6 @@ struct SweepCommand {
     bool list = false, prepare = false, merge = false;
     int only = 0;
 };
-
-RenderRequest baseRequest(const SweepCommand& c) {
-    RenderRequest r;
-    r.input = c.input;
-    for (const auto& [option, text] : c.renderOptions) applyRenderOption(r, *option, text, option->label(kOnCommandLine));
-    validateRequest(r);
-    return r;
-}
 
 // The plot is drawn by pipelines/sweep_plot.py with Debian's matplotlib; a
 // machine without it still gets the tables.
@@ -103,9 +95,8 @@ void runSweepCommand(const SweepCommand& c) {
     if (c.merge) return mergeRuns(c);
     if (c.input.empty() || c.reference.empty()) throw Error("weft sweep needs a scene and --reference (or --merge -o DIR)");
     const TradeMetric metric = parseTradeMetric(c.metric);
-    const RenderRequest base = baseRequest(c);
-    const int threads = base.threads > 0 ? base.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+    const RenderRequest base = c.renderOptions.request(c.input);
+    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, effectiveThreads(base.threads));
     const LoadedScene first = loadRequestScene(base);
     std::vector<SweepRun> runs = planSweep(base, c.groups, *first.scene);
     SweepReferences references(c.reference, path(c, "references"));
@@ -115,7 +106,7 @@ void runSweepCommand(const SweepCommand& c) {
     createOutputFolder(c.outDir);  // only once every run has passed its checks
     const SweepReportInfo info{c.input, c.reference, metric, c.repeat};
     if (c.prepare) {
-        for (const SweepRun& r : runs) references.imageFor(r, first);
+        prepareReferences(runs, base, first, references);
         return (void)std::printf("references of %zu runs ready in %s\n", runs.size(), path(c, "references").c_str());
     }
     const std::size_t count = runs.size();
@@ -127,14 +118,6 @@ void runSweepCommand(const SweepCommand& c) {
     std::snprintf(name, sizeof name, "runs/run-%05d.json", c.only);
     writeSweepRunJson(path(c, name), {results.front(), int(count), info});
     std::printf("run %d of %zu -> %s\n", c.only, count, path(c, name).c_str());
-}
-
-void addRenderOption(CLI::App& cmd, const std::shared_ptr<SweepCommand>& c, const char* name) {
-    const RenderOption* o = findRenderOption(name, kOnCommandLine);
-    auto store = [c, o](const std::vector<std::string>& values) {
-        for (const std::string& v : values) c->renderOptions.emplace_back(o, v);
-    };
-    cmd.add_option_function<std::vector<std::string>>(o->cli, store, o->spec.doc)->allow_extra_args(false);
 }
 
 const CommandRegistrar registrar{{"sweep", 40, [](CLI::App& app) {
@@ -158,7 +141,7 @@ const CommandRegistrar registrar{{"sweep", 40, [](CLI::App& app) {
     cmd->add_flag("--prepare", c->prepare, "render the automatic references only (before a farm array starts)");
     cmd->add_option("--run", c->only, "render run K only, into DIR/runs/run-K.json (one farm task)")->check(CLI::PositiveNumber);
     cmd->add_flag("--merge", c->merge, "write the tables and the plot from DIR/runs/ (after the farm tasks)");
-    for (const char* name : {"resolution", "spp", "seed", "set", "threads", "grid"}) addRenderOption(*cmd, c, name);
+    c->renderOptions.install(*cmd);
     cmd->callback([c] { runSweepCommand(*c); });
 }}};
 

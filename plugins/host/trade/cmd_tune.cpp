@@ -11,13 +11,14 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/error.hpp"
 #include "core/base/progress.hpp"
 #include "core/scene/scene.hpp"
 #include "plugins/host/command.hpp"
+#include "plugins/host/trade/sweep_report.hpp"
+#include "plugins/host/trade/trade_options.hpp"
 #include "plugins/host/trade/tune_search.hpp"
 #include "plugins/technique.hpp"
 
@@ -30,7 +31,7 @@ namespace fs = std::filesystem;
 struct TuneCommand {
     std::string input, target, metric, reference = "auto", cacheDir, json;
     std::vector<std::string> techniques;
-    std::vector<std::pair<const RenderOption*, std::string>> renderOptions;
+    TradeRenderOptions renderOptions;
     int repeat = 1, rounds = 3;
 };
 
@@ -101,8 +102,7 @@ nlohmann::ordered_json resultJson(const SweepResult& r) {
     for (const auto& [k, v] : r.run.varied) j["settings"][k] = v;
     j["time_ms"] = r.times.medianMs;
     j["samples"] = r.samples;
-    j["error"] = {{"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr", r.error.psnr},
-                  {"ssim", r.error.ssim}, {"maxabs", r.error.maxAbs}, {"flip", r.error.flip}};
+    j["error"] = tradeErrorJson(r.error);
     return j;
 }
 
@@ -145,13 +145,9 @@ void printChoices(const std::vector<TuneChoice>& choices, const TuneTarget& t) {
 
 void runTuneCommand(const TuneCommand& c) {
     const TuneTarget target = targetOf(c);
-    RenderRequest base;
-    base.input = c.input;
-    for (const auto& [option, text] : c.renderOptions) applyRenderOption(base, *option, text, option->label(kOnCommandLine));
-    validateRequest(base);
+    const RenderRequest base = c.renderOptions.request(c.input);
     if (!c.json.empty()) checkOutputPath(c.json, "--json");
-    const int threads = base.threads > 0 ? base.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+    tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, effectiveThreads(base.threads));
     const LoadedScene first = loadRequestScene(base);
     const std::vector<std::string> names = techniquesOf(c, base, *first.scene);
     for (const std::string& n : names)
@@ -177,12 +173,7 @@ const CommandRegistrar registrar{{"tune", 41, [](CLI::App& app) {
     cmd->add_option("--json", c->json, "write the choice (technique, settings, time, error) as JSON");
     cmd->add_option("--repeat", c->repeat, "renders per setting; times are their median")->check(CLI::Range(1, 1000));
     cmd->add_option("--rounds", c->rounds, "bisection rounds after the coarse grid")->check(CLI::Range(0, 20));
-    for (const char* name : {"resolution", "spp", "seed", "set", "threads", "grid"}) {
-        const RenderOption* o = findRenderOption(name, kOnCommandLine);
-        cmd->add_option_function<std::vector<std::string>>(o->cli, [c, o](const std::vector<std::string>& values) {
-            for (const std::string& v : values) c->renderOptions.emplace_back(o, v);
-        }, o->spec.doc)->allow_extra_args(false);
-    }
+    c->renderOptions.install(*cmd);
     cmd->callback([c] { runTuneCommand(*c); });
 }}};
 

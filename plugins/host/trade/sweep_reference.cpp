@@ -52,7 +52,7 @@ SweepReferences::SweepReferences(std::string spec, std::string cacheDir) : spec_
 
 void SweepReferences::check(const std::vector<SweepRun>& runs, const Scene& scene) {
     if (!automatic()) {
-        const Image& ref = *loaded_.emplace(spec_, std::make_shared<const Image>(readImage(spec_))).first->second;
+        const Image& ref = readOnce(spec_);
         for (const SweepRun& run : runs)
             if (run.width != ref.width() || run.height != ref.height())
                 throw Error("--reference '" + spec_ + "' is " + std::to_string(ref.width()) + "x" + std::to_string(ref.height()) +
@@ -97,19 +97,22 @@ std::string SweepReferences::cachePath(const SweepRun& run, const Scene& scene) 
     return (fs::path(cacheDir_) / ("reference-" + hex(f.h) + ".exr")).string();
 }
 
-const Image& SweepReferences::imageFor(const SweepRun& run, const LoadedScene& scene, bool* rendered) {
-    if (rendered) *rendered = false;
+const Image& SweepReferences::readOnce(const std::string& path) {
+    auto it = loaded_.find(path);
+    if (it == loaded_.end()) it = loaded_.emplace(path, readImage(path)).first;
+    return it->second;
+}
+
+const Image& SweepReferences::imageFor(const SweepRun& run, const LoadedScene& scene) {
     const std::string path = automatic() ? cachePath(run, *scene.scene) : spec_;
-    if (auto it = loaded_.find(path); it != loaded_.end()) return *it->second;
-    if (automatic() && !fs::exists(path)) {
+    if (automatic() && !loaded_.count(path) && !fs::exists(path)) {
         RenderRequest r = referenceRequest(run);
         r.output = path;
         fs::create_directories(cacheDir_);
         const RenderOutcome out = renderLoadedScene(r, scene);
         writeExr(out.image, path, out.metadata, out.window);
-        if (rendered) *rendered = true;
     }
-    return *loaded_.emplace(path, std::make_shared<const Image>(readImage(path))).first->second;
+    return readOnce(path);
 }
 
 }  // namespace weft

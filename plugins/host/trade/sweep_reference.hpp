@@ -5,7 +5,6 @@
 // cached under the sweep's folder by a hash of the scene's content and the
 // reference's settings, so a later sweep of the same scene reuses it.
 #include <map>
-#include <memory>
 #include <string>
 
 #include "core/image/image.hpp"
@@ -30,12 +29,13 @@ public:
     // request and of the files the scene was loaded from.
     std::string cachePath(const SweepRun& run, const Scene& scene) const;
     // The reference image for `run`: read once, or rendered once on `scene`
-    // and cached. `rendered` is set when it had to be rendered now.
-    const Image& imageFor(const SweepRun& run, const LoadedScene& scene, bool* rendered = nullptr);
+    // and cached.
+    const Image& imageFor(const SweepRun& run, const LoadedScene& scene);
 
 private:
+    const Image& readOnce(const std::string& path);
     std::string spec_, cacheDir_;
-    std::map<std::string, std::shared_ptr<const Image>> loaded_;  // by path
+    std::map<std::string, Image> loaded_;  // by path; read once each
 };
 
 }  // namespace weft

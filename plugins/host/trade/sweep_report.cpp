@@ -48,17 +48,13 @@ std::string errorCells(const TradeError& e) {
            number(e.flip);
 }
 
-nlohmann::ordered_json errorJson(const TradeError& e) {
-    return {{"rmse", e.rmse}, {"relmse", e.relMse}, {"psnr", e.psnr}, {"ssim", e.ssim}, {"maxabs", e.maxAbs}, {"flip", e.flip}};
-}
-
 nlohmann::ordered_json resultJson(const SweepResult& r, bool byTime, bool bySamples) {
     nlohmann::ordered_json j{{"run", r.run.index + 1}, {"technique", r.run.technique}, {"label", runLabel(r.run)}};
     for (const auto& [k, v] : r.run.varied) j["varied"][k] = v;
     j["params"] = r.params;
     j["time_ms"] = {{"median", r.times.medianMs}, {"min", r.times.minMs}, {"max", r.times.maxMs}, {"repeats", r.repeatMs}};
     j["samples"] = r.samples;
-    j["error"] = errorJson(r.error);
+    j["error"] = tradeErrorJson(r.error);
     j["front"] = {{"time", byTime}, {"samples", bySamples}};
     j["counters"] = nlohmann::ordered_json::object();
     for (const auto& [k, v] : r.counters) j["counters"][k] = v;
@@ -84,6 +80,10 @@ SweepResult resultFromJson(const nlohmann::ordered_json& j) {
 }
 
 }  // namespace
+
+nlohmann::ordered_json tradeErrorJson(const TradeError& e) {
+    return {{"rmse", e.rmse}, {"relmse", e.relMse}, {"psnr", e.psnr}, {"ssim", e.ssim}, {"maxabs", e.maxAbs}, {"flip", e.flip}};
+}
 
 void writeSweepRunJson(const std::string& path, const SweepRunFile& f) {
     nlohmann::ordered_json j{{"scene", f.info.scene},   {"reference", f.info.reference}, {"metric", tradeMetricName(f.info.metric)},

@@ -3,12 +3,16 @@
 // same with every repeat's time), sweep.md (a Markdown table for a README)
 // and the Pareto fronts of time and of samples against the chosen metric.
 // Each file is written to a temporary name and renamed.
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "plugins/host/trade/sweep_run.hpp"
 
 namespace weft {
+
+// The error metrics as JSON, the form sweep.json and tune's --json share.
+nlohmann::ordered_json tradeErrorJson(const TradeError& e);
 
 struct SweepFronts {
     std::vector<bool> byTime, bySamples;  // per result: on that front

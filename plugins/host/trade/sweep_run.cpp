@@ -81,6 +81,12 @@ std::int64_t sampleCost(const CounterMap& counters) {
     return total;
 }
 
+void prepareReferences(const std::vector<SweepRun>& runs, const RenderRequest& base, const LoadedScene& first,
+                       SweepReferences& references) {
+    SceneCache scenes(first, base);
+    for (const SweepRun& run : runs) references.imageFor(run, scenes.sceneFor(run.request));
+}
+
 std::vector<SweepResult> runSweep(const std::vector<SweepRun>& runs, const RenderRequest& base, const LoadedScene& first,
                                   SweepReferences& references, const SweepOptions& options) {
     SceneCache scenes(first, base);

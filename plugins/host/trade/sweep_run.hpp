@@ -38,6 +38,11 @@ struct SweepOptions {
     bool progress = false;  // a line per run on stderr
 };
 
+// Renders (or reads) every run's reference, each on the scene framed for
+// its run's aspect, as runSweep would: the farm's --prepare.
+void prepareReferences(const std::vector<SweepRun>& runs, const RenderRequest& base, const LoadedScene& first,
+                       SweepReferences& references);
+
 // `first` is the scene as `base` loads it (the one the plan was checked on).
 std::vector<SweepResult> runSweep(const std::vector<SweepRun>& runs, const RenderRequest& base, const LoadedScene& first,
                                   SweepReferences& references, const SweepOptions& options);
