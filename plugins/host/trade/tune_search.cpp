@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "core/base/error.hpp"
 #include "plugins/technique.hpp"
@@ -28,33 +27,26 @@ std::string formatKnob(double v) {
     return text;
 }
 
-// Renders the settings as one sweep group each, and returns their results.
-std::vector<SweepResult> measure(const RenderRequest& base, const std::string& technique, const std::vector<Setting>& settings,
-                                 const LoadedScene& first, SweepReferences& refs, const SweepOptions& options) {
-    std::vector<SweepGroup> groups;
-    for (const Setting& s : settings) {
-        SweepGroup g{technique, {}};
-        for (const auto& [k, v] : s) g.axes.push_back({k, {v}});
-        groups.push_back(std::move(g));
-    }
+// Renders every combination of the groups (planSweep), returns their results.
+std::vector<SweepResult> measure(const RenderRequest& base, const std::vector<SweepGroup>& groups, const LoadedScene& first,
+                                 SweepReferences& refs, const SweepOptions& options) {
     const std::vector<SweepRun> runs = planSweep(base, groups, *first.scene);
     refs.check(runs, *first.scene);
     return runSweep(runs, base, first, refs, options);
 }
 
-std::vector<Setting> coarseGrid(const std::vector<TradeKnob>& knobs) {
-    std::vector<Setting> grid{{}};
-    for (const TradeKnob& k : knobs) {
-        std::vector<Setting> next;
-        for (const Setting& s : grid)
-            for (const std::string& v : k.values) {
-                Setting t = s;
-                t.emplace_back(k.key, v);
-                next.push_back(std::move(t));
-            }
-        grid = std::move(next);
-    }
-    return grid;
+// The coarse pass: one group whose axes are the knobs' grids.
+SweepGroup coarseGrid(const TechniqueInfo& info) {
+    SweepGroup g{info.name, {}};
+    for (const TradeKnob& k : info.knobs) g.axes.push_back({k.key, k.values});
+    return g;
+}
+
+// One setting as a group of single-value axes.
+SweepGroup groupOf(const std::string& technique, const Setting& setting) {
+    SweepGroup g{technique, {}};
+    for (const auto& [k, v] : setting) g.axes.push_back({k, {v}});
+    return g;
 }
 
 Setting settingOf(const SweepResult& r) { return r.run.varied; }
@@ -91,14 +83,16 @@ void bisect(const RenderRequest& base, const TechniqueInfo& info, const LoadedSc
     for (std::size_t i = 0; i < at.size(); ++i) cheapEnd.push_back(cheaperNeighbour(info.knobs[i], at[i].second));
     for (int round = 0; round < options.rounds; ++round) {
         std::vector<Setting> candidates;
+        std::vector<SweepGroup> groups;
         std::vector<std::size_t> knobOf;
         for (std::size_t i = 0; i < at.size(); ++i) {
             const auto mid = cheapEnd[i] ? knobMidpoint(at[i].second, *cheapEnd[i]) : std::nullopt;
             if (!mid) continue;
             candidates.push_back(at), candidates.back()[i].second = *mid, knobOf.push_back(i);
+            groups.push_back(groupOf(info.name, candidates.back()));
         }
         if (candidates.empty()) return;
-        const std::vector<SweepResult> results = measure(base, info.name, candidates, first, refs, options.sweep);
+        const std::vector<SweepResult> results = measure(base, groups, first, refs, options.sweep);
         search.consider(results);
         const SweepResult* fastest = nullptr;
         for (std::size_t c = 0; c < results.size(); ++c) {
@@ -151,7 +145,7 @@ std::vector<TuneChoice> tuneTechniques(const RenderRequest& base, const std::vec
         const TechniqueInfo& info = techniques().get(name);
         if (info.knobs.empty()) throw Error(name + " declares no speed/accuracy knobs to tune");
         Search search{target, {name, {}, {}, 0}};
-        search.consider(measure(base, name, coarseGrid(info.knobs), first, references, options.sweep));
+        search.consider(measure(base, {coarseGrid(info)}, first, references, options.sweep));
         if (search.choice.best) bisect(base, info, first, references, options, search);
         choices.push_back(std::move(search.choice));
     }
