@@ -4,6 +4,8 @@
 #include <sstream>
 #include <vector>
 
+#include <openvdb/version.h>
+
 #include "core/base/error.hpp"
 
 namespace weft {
@@ -11,7 +13,9 @@ namespace weft {
 namespace {
 
 constexpr std::int64_t kMagic = 0x56444220;  // " BDV"
-constexpr std::uint32_t kOldestWalked = 213, kNewestWalked = 224;
+// Format 213 (the root node map) predates OpenVDB's first public release;
+// the newest is the one this OpenVDB writes.
+constexpr std::uint32_t kOldestWalked = 213, kNewestWalked = openvdb::OPENVDB_FILE_VERSION;
 constexpr std::uint32_t kMaxName = 1 << 20;  // names and type names: a megabyte is already absurd
 
 // Bytes of the linear maps' data after their type name (OpenVDB's Map::read).
@@ -116,7 +120,13 @@ void walk(std::istream& in, std::uint64_t size, const std::string& name) {
     Walker w(in, size, name);
     if (size < 8 || w.value<std::int64_t>("magic number") != kMagic) return;  // not a VDB: OpenVDB says so
     const std::uint32_t version = w.value<std::uint32_t>("file version");
-    if (version < kOldestWalked || version > kNewestWalked) return;  // a layout not walked here: OpenVDB alone
+    // Outside these versions OpenVDB reads lengths this walk cannot check
+    // (a 40-byte header of version 0 made it allocate 1.7 GB), so the file is
+    // refused rather than trusted.
+    if (version < kOldestWalked || version > kNewestWalked)
+        throw Error("volume '" + name + "': OpenVDB file format version " + std::to_string(version) +
+                    " is not one weft reads (" + std::to_string(kOldestWalked) + " to " + std::to_string(kNewestWalked) +
+                    "); re-save the file with a current OpenVDB");
     w.value<std::uint32_t>("library major version");
     w.value<std::uint32_t>("library minor version");
     const bool offsets = w.value<std::uint8_t>("grid offsets flag") != 0;

@@ -71,6 +71,22 @@ TEST_F(VdbPreflight, NotAVdbIsLeftToOpenVdb) {
     EXPECT_EQ(verdict(""), "");
 }
 
+// The walk covers format versions 213 to the library's own; OpenVDB's
+// readers of other versions trust lengths it cannot check.
+TEST_F(VdbPreflight, FormatVersionsOutsideTheWalkAreRefused) {
+    for (const std::uint32_t version : {0u, 212u, openvdb::OPENVDB_FILE_VERSION + 1, 0xffffffffu}) {
+        std::string b = bytes;
+        put32(b, 8, version);
+        EXPECT_NE(verdict(b).find("file format version " + std::to_string(version) + " is not one weft reads"),
+                  std::string::npos) << version;
+    }
+    for (const std::uint32_t version : {213u, openvdb::OPENVDB_FILE_VERSION}) {
+        std::string b = bytes;
+        put32(b, 8, version);
+        EXPECT_EQ(verdict(b).find("is not one weft reads"), std::string::npos) << version;
+    }
+}
+
 TEST_F(VdbPreflight, HugeGridNameLength) {
     std::string b = bytes;
     put32(b, lengthBefore("Tree_float"), 0xffffff0d);

@@ -253,10 +253,6 @@ TEST(FuzzRegressions, MalformedPlyPropertyIsRefusedBeforeAssimp) {
 namespace weft::fuzz {
 namespace {
 
-// A corrupt leaf buffer claimed 0x6e6f697373657270 compressed bytes (the
-// text "pression" read as a size): OpenVDB's blosc reader allocated it. A
-// normal build's operator new throws std::bad_alloc, which the loader turns
-// into one line; sanitized builds get the same (cmake/sanitize_bounded_new.cpp).
 // "element face" declared twice, and vertices with x but no y or z: Assimp's
 // PLY reader wrote past its buffers (ASan's allocator found its own chunk
 // headers overwritten).
@@ -270,10 +266,23 @@ TEST(FuzzRegressions, PlyElementDeclaredTwiceIsRefusedBeforeAssimp) {
     EXPECT_NE(noZ.message.find("declares no vertex property z"), std::string::npos) << noZ.message;
 }
 
+// A corrupt leaf buffer claimed 0x6e6f697373657270 compressed bytes (the
+// text "pression" read as a size): OpenVDB's blosc reader allocated it. A
+// normal build's operator new throws std::bad_alloc, which the loader turns
+// into one line; sanitized builds get the same (cmake/sanitize_bounded_new.cpp).
 TEST(FuzzRegressions, VdbBloscSizeOfEightExabytesIsRefused) {
     const Outcome o = feed(vdbFile, regressionFile("vdb", "blosc-claims-8-exabytes.vdb"));
     expectRefused(o);
     EXPECT_NE(o.message.find("volume.vdb"), std::string::npos) << o.message;
+}
+
+// A 40 KB file of format version 0: OpenVDB's reader of the pre-release
+// layouts, which the preflight did not walk, peaked at 1.7 GB before it
+// gave up. Such versions are now refused before OpenVDB opens the file.
+TEST(FuzzRegressions, VdbOfFormatVersionZeroIsRefusedBeforeOpenVdb) {
+    const Outcome o = feed(vdbFile, regressionFile("vdb", "format-version-0-peaks-at-1.7GB.vdb"));
+    expectRefused(o);
+    EXPECT_NE(o.message.find("file format version 0 is not one weft reads"), std::string::npos) << o.message;
 }
 
 }  // namespace
