@@ -59,7 +59,8 @@ def main(argv):
         return 2
     with open(argv[1]) as f:
         sweep = json.load(f)
-    runs, metric = sweep["runs"], sweep["metric"]
+    # Settings the technique refused have no time or error.
+    runs, metric = [r for r in sweep["runs"] if "refused" not in r], sweep["metric"]
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     panel(axes[0], runs, metric, lambda r: r["time_ms"]["median"] / 1000.0, "time", "median render time (s)")
     panel(axes[1], runs, metric, lambda r: float(r["samples"]), "samples", "samples (rays + volume samples)")

@@ -169,3 +169,50 @@ TEST(SweepCli, FarmPrepareFramesEveryAspect) {
     ASSERT_EQ(runWeft("sweep --merge --no-plot -o " + farm).status, 0);
     EXPECT_EQ(csvWithoutTimes(dir / "one" / "sweep.csv"), csvWithoutTimes(dir / "farm" / "sweep.csv"));
 }
+
+// A combination the technique refuses (jitter=true with an offset pattern:
+// both set the first sample's offset) is recorded with its reason and the
+// sweep goes on; the farm's run files and merge keep it; a sweep whose every
+// run is refused fails in one line and writes no table.
+TEST(SweepCli, ARefusedSettingIsRecordedAndTheSweepGoesOn) {
+    TempDir dir;
+    const std::string sweep = "sweep " + kScene + " --set offset_pattern=interleaved:4x4 --technique volume.raymarch "
+                              "--vary jitter=false,true --vary step=0.5,1 --reference auto --no-plot -o ";
+    const auto out = runWeft(sweep + (dir / "s").string());
+    ASSERT_EQ(out.status, 0) << out.output;
+    EXPECT_NE(out.output.find("4 runs (2 refused"), std::string::npos) << out.output;
+    const auto j = readJson(dir / "s" / "sweep.json");
+    ASSERT_EQ(j["runs"].size(), 4u);
+    for (int i : {0, 1}) {
+        EXPECT_FALSE(j["runs"][i].contains("refused")) << i;
+        EXPECT_GT(j["runs"][i]["samples"].get<long long>(), 0) << i;
+    }
+    for (int i : {2, 3}) {
+        ASSERT_TRUE(j["runs"][i].contains("refused")) << i;
+        EXPECT_NE(j["runs"][i]["refused"].get<std::string>().find("choose one"), std::string::npos) << i;
+        EXPECT_FALSE(j["runs"][i].contains("error")) << i;
+    }
+    std::ifstream csv(dir / "s" / "sweep.csv");
+    std::string header, row;
+    std::getline(csv, header);
+    const auto cells = [](const std::string& line) { return std::count(line.begin(), line.end(), ',') + 1; };
+    for (int i = 0; i < 4 && std::getline(csv, row); ++i) {
+        EXPECT_EQ(cells(row), cells(header)) << row;
+        EXPECT_EQ(row.find("choose one") != std::string::npos, i >= 2) << row;
+    }
+    std::ifstream md(dir / "s" / "sweep.md");
+    const std::string table((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_NE(table.find("- run 3, volume.raymarch jitter=true step=0.5: "), std::string::npos) << table;
+
+    const std::string farm = (dir / "farm").string();
+    for (int k : {1, 2, 3, 4}) ASSERT_EQ(runWeft(sweep + farm + " --run " + std::to_string(k)).status, 0) << k;
+    ASSERT_EQ(runWeft("sweep --merge --no-plot -o " + farm).status, 0);
+    EXPECT_EQ(csvWithoutTimes(dir / "s" / "sweep.csv"), csvWithoutTimes(dir / "farm" / "sweep.csv"));
+
+    const auto all = runWeft("sweep " + kScene + " --set offset_pattern=interleaved:4x4 --technique volume.raymarch "
+                             "--vary jitter=true --reference auto --no-plot -o " + (dir / "all").string());
+    EXPECT_NE(all.status, 0);
+    EXPECT_NE(all.output.find("every run of the sweep was refused"), std::string::npos) << all.output;
+    EXPECT_EQ(std::count(all.output.begin(), all.output.end(), '\n'), 1) << all.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "all" / "sweep.csv"));
+}

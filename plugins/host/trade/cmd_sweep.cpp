@@ -58,12 +58,18 @@ void createOutputFolder(const std::string& dir) {
 std::string path(const SweepCommand& c, const std::string& name) { return (fs::path(c.outDir) / name).string(); }
 
 void writeReports(const SweepCommand& c, const std::vector<SweepResult>& results, const SweepReportInfo& info) {
+    if (!anyRendered(results))
+        throw Error("every run of the sweep was refused; the first: " + results.front().run.technique + " " + runLabel(results.front().run) +
+                    ": " + results.front().refused);
     const SweepFronts fronts = sweepFronts(results, info.metric);
     writeSweepCsv(path(c, "sweep.csv"), results, fronts);
     writeSweepJson(path(c, "sweep.json"), results, fronts, info);
     writeSweepMarkdown(path(c, "sweep.md"), results, fronts, info);
     if (c.plot) drawPlot(c.outDir);
-    std::printf("%zu runs -> %s/sweep.csv, sweep.json, sweep.md%s\n", results.size(), c.outDir.c_str(), c.plot ? ", sweep.png" : "");
+    const auto refused = std::count_if(results.begin(), results.end(), [](const SweepResult& r) { return !r.refused.empty(); });
+    std::printf("%zu runs%s -> %s/sweep.csv, sweep.json, sweep.md%s\n", results.size(),
+                refused ? (" (" + std::to_string(refused) + " refused: see sweep.md)").c_str() : "", c.outDir.c_str(),
+                c.plot ? ", sweep.png" : "");
 }
 
 // --merge: DIR/runs/run-*.json, every run of one sweep, into the tables.

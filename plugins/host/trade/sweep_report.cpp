@@ -51,6 +51,7 @@ std::string errorCells(const TradeError& e) {
 nlohmann::ordered_json resultJson(const SweepResult& r, bool byTime, bool bySamples) {
     nlohmann::ordered_json j{{"run", r.run.index + 1}, {"technique", r.run.technique}, {"label", runLabel(r.run)}};
     for (const auto& [k, v] : r.run.varied) j["varied"][k] = v;
+    if (!r.refused.empty()) return j["refused"] = r.refused, j;
     j["params"] = r.params;
     j["time_ms"] = {{"median", r.times.medianMs}, {"min", r.times.minMs}, {"max", r.times.maxMs}, {"repeats", r.repeatMs}};
     j["samples"] = r.samples;
@@ -67,6 +68,7 @@ SweepResult resultFromJson(const nlohmann::ordered_json& j) {
     r.run.technique = j.at("technique").get<std::string>();
     if (j.contains("varied"))
         for (const auto& [k, v] : j.at("varied").items()) r.run.varied.emplace_back(k, v.get<std::string>());
+    if (j.contains("refused")) return r.refused = j.at("refused").get<std::string>(), r;
     r.params = j.at("params").get<std::string>();
     const auto& t = j.at("time_ms");
     r.times = {t.at("median").get<double>(), t.at("min").get<double>(), t.at("max").get<double>()};
@@ -106,9 +108,11 @@ SweepRunFile readSweepRunJson(const std::string& path) {
 
 SweepFronts sweepFronts(const std::vector<SweepResult>& results, TradeMetric metric) {
     std::vector<std::pair<double, double>> time, samples;
-    for (const SweepResult& r : results) {
-        time.emplace_back(r.times.medianMs, metricAsError(r.error, metric));
-        samples.emplace_back(double(r.samples), metricAsError(r.error, metric));
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const SweepResult& r : results) {  // a refused run costs everything: never on a front
+        const bool shown = r.refused.empty();
+        time.emplace_back(shown ? r.times.medianMs : inf, shown ? metricAsError(r.error, metric) : inf);
+        samples.emplace_back(shown ? double(r.samples) : inf, shown ? metricAsError(r.error, metric) : inf);
     }
     SweepFronts f{std::vector<bool>(results.size()), std::vector<bool>(results.size())};
     for (std::size_t i : paretoFront(time)) f.byTime[i] = true;
@@ -126,16 +130,20 @@ void writeSweepCsv(const std::string& path, const std::vector<SweepResult>& resu
     std::ostringstream os;
     os << "run,technique";
     for (const std::string& k : keys) os << "," << csvField(k);
-    os << ",params,median_ms,min_ms,max_ms,samples,rmse,relmse,psnr,ssim,maxabs,flip,front_time,front_samples";
+    os << ",params,median_ms,min_ms,max_ms,samples,rmse,relmse,psnr,ssim,maxabs,flip,front_time,front_samples,refused";
     for (const std::string& c : counters) os << ",counters." << c;
     os << "\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
         const SweepResult& r = results[i];
         os << r.run.index + 1 << "," << r.run.technique;
         for (const std::string& k : keys) os << "," << csvField(varied(r, k));
+        if (!r.refused.empty()) {  // no time, samples or error; empty counters
+            os << ",,,,,,,,,,,,0,0," << csvField(r.refused) << std::string(counters.size(), ',') << "\n";
+            continue;
+        }
         os << "," << csvField(r.params) << "," << number(r.times.medianMs) << "," << number(r.times.minMs) << ","
            << number(r.times.maxMs) << "," << r.samples << "," << errorCells(r.error) << "," << int(fronts.byTime[i]) << ","
-           << int(fronts.bySamples[i]);
+           << int(fronts.bySamples[i]) << ",";
         for (const std::string& c : counters) {
             const auto it = r.counters.find(c);
             os << "," << (it == r.counters.end() ? 0 : it->second);
@@ -163,14 +171,20 @@ void writeSweepMarkdown(const std::string& path, const std::vector<SweepResult>&
        << " render(s); front: not beaten on both time and " << tradeMetricName(info.metric) << ".\n\n"
        << "| technique | settings | time (s) | samples | RMSE | relMSE | PSNR (dB) | SSIM | FLIP | front |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+    std::string refused;
     for (std::size_t i : order) {
         const SweepResult& r = results[i];
+        if (!r.refused.empty()) {
+            refused += "- run " + std::to_string(r.run.index + 1) + ", " + r.run.technique + " " + runLabel(r.run) + ": " + r.refused + "\n";
+            continue;
+        }
         char row[512];
         std::snprintf(row, sizeof row, "| %s | %s | %.3g | %lld | %.4g | %.4g | %.2f | %.4f | %.4f | %s |\n", r.run.technique.c_str(),
                       runLabel(r.run).c_str(), r.times.medianMs / 1000, (long long)r.samples, r.error.rmse, r.error.relMse,
                       r.error.psnr, r.error.ssim, r.error.flip, fronts.byTime[i] ? "*" : "");
         os << row;
     }
+    if (!refused.empty()) os << "\nSettings the technique refused:\n\n" << refused;
     writeTextAtomically(path, os.str(), "sweep");
 }
 

@@ -42,19 +42,27 @@ std::string paramsText(const RenderOutcome& out) {
 
 void printProgress(const SweepResult& r, std::size_t done, std::size_t total, double elapsedMs) {
     const double leftS = elapsedMs / double(done) * double(total - done) / 1000;
+    if (!r.refused.empty())
+        return (void)std::fprintf(stderr, "sweep: run %zu of %zu  %s %s  refused: %s\n", done, total, r.run.technique.c_str(),
+                                  runLabel(r.run).c_str(), r.refused.c_str());
     std::fprintf(stderr, "sweep: run %zu of %zu  %s %s  %.3g s  RMSE %.4g  (about %.0f s left)\n", done, total,
                  r.run.technique.c_str(), runLabel(r.run).c_str(), r.times.medianMs / 1000, r.error.rmse, leftS);
 }
 
 SweepResult runOne(const SweepRun& run, const LoadedScene& scene, SweepReferences& refs, int repeat) {
     const Image& reference = refs.imageFor(run, scene);
-    SweepResult res{run, {}, {}, {}, 0, {}, {}};
+    SweepResult res{run, {}, {}, {}, 0, {}, {}, {}};
     RenderOutcome first;
-    for (int i = 0; i < repeat; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        RenderOutcome out = renderLoadedScene(run.request, scene);
-        res.repeatMs.push_back(msSince(t0));
-        if (i == 0) first = std::move(out);
+    try {
+        for (int i = 0; i < repeat; ++i) {
+            const auto t0 = std::chrono::steady_clock::now();
+            RenderOutcome out = renderLoadedScene(run.request, scene);
+            res.repeatMs.push_back(msSince(t0));
+            if (i == 0) first = std::move(out);
+        }
+    } catch (const Error& e) {
+        res.refused = e.what();
+        return res;
     }
     res.times = summarizeTimes(res.repeatMs);
     res.counters = first.counters;
@@ -72,6 +80,10 @@ RunTimes summarizeTimes(std::vector<double> ms) {
     const std::size_t n = ms.size();
     const double median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
     return {median, ms.front(), ms.back()};
+}
+
+bool anyRendered(const std::vector<SweepResult>& results) {
+    return std::any_of(results.begin(), results.end(), [](const SweepResult& r) { return r.refused.empty(); });
 }
 
 std::int64_t sampleCost(const CounterMap& counters) {

@@ -27,7 +27,12 @@ struct SweepResult {
     std::int64_t samples = 0;     // sampleCost(counters)
     TradeError error;
     std::string params;           // the technique's parameters as rendered, "k=v k=v"
+    // The technique's one-line refusal of this setting (a combination of
+    // values it does not render, e.g. more sub-buffers than VPLs); such a
+    // run has no time or error and stays out of the fronts.
+    std::string refused;
 };
+bool anyRendered(const std::vector<SweepResult>& results);
 
 // A cost that does not depend on the machine: every ray traced and every
 // volume sample taken (rays.*, volume.samples, fragments.shaded).
@@ -44,6 +49,8 @@ void prepareReferences(const std::vector<SweepRun>& runs, const RenderRequest& b
                        SweepReferences& references);
 
 // `first` is the scene as `base` loads it (the one the plan was checked on).
+// A run the technique refuses is recorded as refused and the sweep goes on;
+// a reference that cannot be rendered stops it.
 std::vector<SweepResult> runSweep(const std::vector<SweepRun>& runs, const RenderRequest& base, const LoadedScene& first,
                                   SweepReferences& references, const SweepOptions& options);
 

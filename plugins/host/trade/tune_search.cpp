@@ -64,6 +64,7 @@ struct Search {
     void consider(const std::vector<SweepResult>& results) {
         for (const SweepResult& r : results) {
             ++choice.runs;
+            if (!r.refused.empty()) continue;
             if (target.met(r.error)) {
                 if (!choice.best || r.times.medianMs < choice.best->times.medianMs) choice.best = r;
             } else if (!choice.closest || metricAsError(r.error, target.metric) < metricAsError(choice.closest->error, target.metric)) {
@@ -96,7 +97,7 @@ void bisect(const RenderRequest& base, const TechniqueInfo& info, const LoadedSc
         search.consider(results);
         const SweepResult* fastest = nullptr;
         for (std::size_t c = 0; c < results.size(); ++c) {
-            if (!search.target.met(results[c].error)) cheapEnd[knobOf[c]] = candidates[c][knobOf[c]].second;
+            if (!results[c].refused.empty() || !search.target.met(results[c].error)) cheapEnd[knobOf[c]] = candidates[c][knobOf[c]].second;
             else if (!fastest || results[c].times.medianMs < fastest->times.medianMs) fastest = &results[c];
         }
         if (fastest) at = settingOf(*fastest);
