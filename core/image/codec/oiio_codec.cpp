@@ -3,6 +3,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cstdio>
+#include <memory>
+#include <string>
 
 #include "core/base/physical_memory.hpp"
 #include "core/image/image_codec.hpp"
@@ -35,8 +37,26 @@ double maxPixelBytes() { return weft::physicalMemoryBytes() / 2; }
 
 // The library's messages stay inside the module: the caller gets what went
 // wrong in weft's words.
+// The reader of the file's extension. OpenImageIO's open(path) tries every
+// other format's reader on a file its own reader refuses, which is slow on a
+// corrupt file and names the wrong format; only a name without a known
+// extension is left to that search.
+std::unique_ptr<OIIO::ImageInput> openByExtension(const std::string& path) {
+    const std::size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
+    if (dot != std::string::npos && (slash == std::string::npos || dot > slash) && dot + 1 < path.size()) {
+        if (auto in = OIIO::ImageInput::create(path.substr(dot + 1))) {
+            OIIO::ImageSpec spec;
+            if (in->open(path, spec)) return in;
+            in->geterror();  // clear it
+            return nullptr;
+        }
+        OIIO::geterror();
+    }
+    return OIIO::ImageInput::open(path);
+}
+
 std::string readPixels(const std::string& path, ImageFileSpec& f, std::vector<float>& pixels) {
-    auto in = OIIO::ImageInput::open(path);
+    auto in = openByExtension(path);
     if (!in) {
         OIIO::geterror();  // clear it
         return "cannot be read: not an image file, or its header is corrupt";
