@@ -1,11 +1,13 @@
 #include "core/base/render_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "core/base/error.hpp"
 #include "core/base/frames.hpp"
+#include "core/base/exr_options.hpp"
 
 namespace weft {
 
@@ -79,6 +81,18 @@ std::vector<RenderOption> makeTable() {
     t.push_back(option(floatParam("max-memory", 0, 0, 1e6, "refuse renders estimated to need more GiB than this: the technique's buffers per pixel and the scene (0 = 3/4 of physical memory)"),
                        "--max-memory", kOnCommandLine | kInBatchJob,
                        [](RenderRequest& r, const std::string& v) { r.maxMemoryGiB = std::stod(v); }));
+    t.push_back(option(enumParam("compression", kDefaultExrCompression, exrCompressionNames(),
+                                 "EXR compression; lossless: none, rle, zips, zip, piz; lossy: pxr24 (floats rounded to 24 bits), "
+                                 "b44, b44a (lossy on half channels), dwaa, dwab (lossy on R, G, B, Y, and on a layer's .R/.G/.B/.Y such as N.Y)"),
+                       "--compression", kOnCommandLine | kInBatchJob,
+                       [](RenderRequest& r, const std::string& v) { r.compression = v; }));
+    t.push_back(option(stringParam("pixel_type", "float",
+                                   "EXR pixel type, repeatable, later ones win: half or float for every channel, or CHANNEL=TYPE "
+                                   "for a channel, a layer (N: N.X, N.Y, N.Z) or aovs (all but R, G, B, A); half saturates at 65504",
+                                   checkPixelTypeSpec),
+                       "-d,--pixel-type", kOnCommandLine | kInBatchJob,
+                       [](RenderRequest& r, const std::string& v) { r.pixelTypes.push_back(v); }));
+    t.back().repeated = true;
     t.push_back(option(boolParam("verbose", false, "print the counter table and timings"), "-v,--verbose", kOnCommandLine | kInBatchJob,
                        [](RenderRequest& r, const std::string& v) { r.verbose = v == "true"; }));
     return t;
@@ -106,6 +120,10 @@ std::string checked(const ParamSpec& spec, const std::string& text) {
             if (v < spec.min || v > spec.max) throw Error(text + " is outside " + spec.allowedText());
             return spec.type == ParamType::Int ? std::to_string(static_cast<long long>(v)) : formatNumber(v);
         }
+        case ParamType::Enum:
+            if (std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end())
+                throw Error("'" + text + "' is not " + spec.allowedText());
+            return text;
         default:
             if (spec.check) spec.check(text);
             return text;

@@ -39,6 +39,8 @@ struct RenderRequest {
     std::optional<int> frame;  // the frame a scene file is loaded at (names already expanded)
     std::string tile;          // "i/n": render only row band i of n (core/base/frames.hpp); "" = all
     double maxMemoryGiB = 0;   // refuse renders whose images alone need more; 0 = 3/4 of physical memory
+    std::string compression;   // the EXR's compression; "" = the default (core/base/exr_options.hpp)
+    std::vector<std::string> pixelTypes;  // -d specs: half, float, CHANNEL=TYPE
 };
 
 // Where an option may be given.

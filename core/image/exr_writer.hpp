@@ -6,15 +6,17 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/exr_options.hpp"
 #include "core/image/image.hpp"
 
 namespace weft {
 
-// Writes all channels as 32-bit float, zip-compressed, with string
-// attributes, the data window at (x, y) inside a fullWidth x fullHeight
-// display window. No time stamp: same pixels and attributes, same bytes.
+// Writes the channels as `encoding` says (compression, half or float), with
+// string attributes, the data window at (x, y) inside a fullWidth x
+// fullHeight display window. No time stamp: same pixels, attributes and
+// encoding, same bytes.
 void writeExrFile(const std::string& path, const Image& image,
                   const std::vector<std::pair<std::string, std::string>>& attributes, int x, int y, int fullWidth,
-                  int fullHeight);
+                  int fullHeight, const ExrEncoding& encoding);
 
 }  // namespace weft

@@ -40,12 +40,13 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
     writeExr(image, path, metadata, ImageWindow{0, 0, image.width(), image.height()});
 }
 
-void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window) {
+void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window,
+              const ExrEncoding& encoding) {
     if (lowerExtension(path) != ".exr") throw Error("output '" + path + "': the render output must be an .exr file");
     Metadata attributes{{"oiio:ColorSpace", "scene_linear"}};
     attributes.insert(attributes.end(), metadata.begin(), metadata.end());
     AtomicOutput out(path);
-    writeExrFile(out.tempPath(), image, attributes, window.x, window.y, window.fullWidth, window.fullHeight);
+    writeExrFile(out.tempPath(), image, attributes, window.x, window.y, window.fullWidth, window.fullHeight, encoding);
     out.commit();
 }
 

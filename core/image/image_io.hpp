@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/exr_options.hpp"
 #include "core/image/image.hpp"
 
 namespace weft {
@@ -19,12 +20,14 @@ struct ImageWindow {
     int fullWidth = 0, fullHeight = 0;
 };
 
-// Writes all channels as a 32-bit float, zip-compressed EXR, atomically.
-// No time stamps are written: same pixels and metadata give the same bytes.
+// Writes an EXR atomically: 32-bit float channels, losslessly compressed
+// (kDefaultExrCompression), unless `encoding` says otherwise. No time stamps
+// are written: same pixels, metadata and encoding give the same bytes.
 void writeExr(const Image& image, const std::string& path, const Metadata& metadata);
 // The same for a part of a frame: the EXR's data window starts at
 // (window.x, window.y) inside a fullWidth x fullHeight display window.
-void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window);
+void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window,
+              const ExrEncoding& encoding = {});
 
 // Reads any image OpenImageIO understands, as float; metadata receives the
 // string attributes and window the data and display windows, when given.

@@ -263,11 +263,28 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     return out;
 }
 
+// The EXR's encoding from --compression and -d, recorded in its metadata; a
+// -d CHANNEL=TYPE that names none of this image's channels is a warning (the
+// same command line may serve techniques with other AOVs).
+ExrEncoding exrEncodingFor(const RenderRequest& r, RenderOutcome& out) {
+    ExrEncoding e{r.compression.empty() ? kDefaultExrCompression : r.compression, r.pixelTypes, effectiveThreads(r.threads)};
+    std::vector<std::string> unmatched;
+    const std::vector<bool> half = halfChannels(out.image.channelNames(), e.pixelTypes, &unmatched);
+    for (const std::string& spec : unmatched)
+        std::fprintf(stderr, "weft: warning: -d '%s' names no channel of the image (%zu channels)\n", spec.c_str(), half.size());
+    out.metadata.emplace_back("weft:compression", e.compression);
+    out.metadata.emplace_back("weft:pixel_types", pixelTypesText(out.image.channelNames(), half));
+    return e;
+}
+
 RenderOutcome runRender(const RenderRequest& r) {
     checkOutputs(r);
     RenderOutcome out = renderToImage(r);
     const auto t0 = std::chrono::steady_clock::now();
-    if (!r.output.empty()) writeExr(out.image, r.output, out.metadata, out.window);
+    if (!r.output.empty()) {
+        const ExrEncoding encoding = exrEncodingFor(r, out);
+        writeExr(out.image, r.output, out.metadata, out.window, encoding);
+    }
     if (!r.preview.empty()) writePreview(out.image, r.preview);
     out.timingsMs.emplace_back("write", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (!r.stats.empty()) writeStats(r, out, effectiveThreads(r.threads));

@@ -59,6 +59,36 @@ TEST(RenderCli, WritesMetadataStatsAndPreview) {
     EXPECT_EQ(png.width(), 32);
 }
 
+// --compression and -d choose the EXR's encoding and say so in its
+// metadata; a bad value is one line before anything renders, and no file.
+TEST(RenderCli, CompressionAndPixelTypesAreChosenAndRecorded) {
+    TempDir dir;
+    const auto r = runWeft("render builtin:sphere --res 24x16 --compression piz -d half -d A=float -o " + (dir / "h.exr").string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    weft::Metadata md;
+    const weft::Image half = weft::readImage((dir / "h.exr").string(), &md);
+    EXPECT_EQ(metaValue(md, "weft:compression"), "piz");
+    EXPECT_EQ(metaValue(md, "weft:pixel_types"), "A float; R,G,B half");
+    EXPECT_EQ(metaValue(md, "compression"), "piz");  // OpenEXR's own field, as OpenImageIO reads it
+    ASSERT_EQ(runWeft("render builtin:sphere --res 24x16 -o " + (dir / "f.exr").string()).status, 0);
+    md.clear();
+    const weft::Image full = weft::readImage((dir / "f.exr").string(), &md);
+    EXPECT_EQ(metaValue(md, "weft:pixel_types"), "float");
+    EXPECT_FALSE(metaValue(md, "weft:compression").empty());
+    for (std::size_t i = 0; i < full.data().size(); ++i)
+        ASSERT_NEAR(half.data()[i], full.data()[i], std::abs(full.data()[i]) / 1024 + 1e-7) << i;
+    const auto unmatched = runWeft("render builtin:sphere --res 8x8 -d Z=half -o " + (dir / "z.exr").string());
+    EXPECT_EQ(unmatched.status, 0);
+    EXPECT_NE(unmatched.output.find("-d 'Z=half' names no channel"), std::string::npos) << unmatched.output;
+    for (const std::string bad : {"--compression zstd", "-d quarter", "-d =half"}) {
+        const auto out = runWeft("render builtin:sphere --res 8x8 " + bad + " -o " + (dir / "bad.exr").string());
+        EXPECT_NE(out.status, 0) << bad;
+        EXPECT_EQ(std::count(out.output.begin(), out.output.end(), '\n'), 1) << bad << ": " << out.output;
+        EXPECT_NE(out.output.find(bad.substr(bad.find(' ') + 1)), std::string::npos) << out.output;
+        EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr")) << bad;
+    }
+}
+
 TEST(RenderCli, BareVdbIsFramedAndRendered) {
     TempDir dir;
     writeProceduralVdb(dir / "sphere.vdb", "sphere", 16);
