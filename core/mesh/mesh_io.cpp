@@ -8,6 +8,7 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -123,6 +124,13 @@ bool isPlyType(const std::string& t) {
     return std::find(std::begin(kTypes), std::end(kTypes), t) != std::end(kTypes);
 }
 
+// Element names are words ("vertex", "face", "range_grid"): Assimp's parser
+// spun for 20 s on "element 888...+888fHce 2" (found by fuzz_ply).
+bool isPlyName(const std::string& name) {
+    const auto word = [](char c) { return std::isalnum((unsigned char)c) || c == '_' || c == '-' || c == '.'; };
+    return !name.empty() && (std::isalpha((unsigned char)name[0]) || name[0] == '_') && std::all_of(name.begin(), name.end(), word);
+}
+
 // One header line against the PLY grammar ("element NAME COUNT",
 // "property TYPE NAME", "property list TYPE TYPE NAME", ...).
 bool plyHeaderLineOk(const std::string& line, std::uintmax_t fileBytes) {
@@ -134,7 +142,7 @@ bool plyHeaderLineOk(const std::string& line, std::uintmax_t fileBytes) {
     // Every element takes at least a byte of the file: a larger count is
     // corrupt, and Assimp would allocate it before reading a byte.
     if (w[0] == "element")
-        return w.size() == 3 && w[2].size() <= 19 && w[2].find_first_not_of("0123456789") == std::string::npos &&
+        return w.size() == 3 && isPlyName(w[1]) && w[2].size() <= 19 && w[2].find_first_not_of("0123456789") == std::string::npos &&
                std::stoull(w[2]) <= fileBytes;
     if (w[0] == "property" && w.size() == 3) return isPlyType(w[1]);
     if (w[0] == "property" && w.size() == 5) return w[1] == "list" && isPlyType(w[2]) && isPlyType(w[3]);

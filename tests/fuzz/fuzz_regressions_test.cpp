@@ -270,6 +270,14 @@ TEST(FuzzRegressions, PlyElementDeclaredTwiceIsRefusedBeforeAssimp) {
 // text "pression" read as a size): OpenVDB's blosc reader allocated it. A
 // normal build's operator new throws std::bad_alloc, which the loader turns
 // into one line; sanitized builds get the same (cmake/sanitize_bounded_new.cpp).
+// An element named "888888888888888888888888+88888888888fHce" kept
+// Assimp's PLY reader busy for 20 s (and 400 MB): names must be words.
+TEST(FuzzRegressions, PlyElementNameThatIsNoWordIsRefusedBeforeAssimp) {
+    const Outcome o = feed(plyFile, regressionFile("ply", "element-name-of-digits-and-plus-hangs-assimp.ply"));
+    expectRefused(o);
+    EXPECT_NE(o.message.find("PLY header line 8 is malformed"), std::string::npos) << o.message;
+}
+
 TEST(FuzzRegressions, VdbBloscSizeOfEightExabytesIsRefused) {
     const Outcome o = feed(vdbFile, regressionFile("vdb", "blosc-claims-8-exabytes.vdb"));
     expectRefused(o);

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <map>
-#include <set>
+#include <vector>
 
 #include "core/base/frames.hpp"
 #include "core/base/render_options.hpp"
@@ -36,7 +36,10 @@ inline std::vector<std::string> textLines(const std::string& text) {
 inline void frameRange(const std::string& text) {
     const std::vector<int> frames = parseFrameRange(text);
     require(!frames.empty() && frames.size() <= 1000000, "1 to 10^6 frames", text);
-    require(std::set<int>(frames.begin(), frames.end()).size() == frames.size(), "no frame twice", text);
+    // Sorted, not a std::set: a million set nodes took seconds under ASan.
+    std::vector<int> sorted = frames;
+    std::sort(sorted.begin(), sorted.end());
+    require(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(), "no frame twice", text);
     for (int f : frames) require(std::abs(f) <= 1000000000, "frames within +-10^9", text);
 }
 
