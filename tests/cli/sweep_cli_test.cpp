@@ -216,3 +216,24 @@ TEST(SweepCli, ARefusedSettingIsRecordedAndTheSweepGoesOn) {
     EXPECT_EQ(std::count(all.output.begin(), all.output.end(), '\n'), 1) << all.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "all" / "sweep.csv"));
 }
+
+// A volume family's reference converges the volume at 256 spp; on a scene
+// with meshes it takes the path tracer's 4096, or the surfaces' light
+// sampling noise would stay in every error (docs/trade/smoke_in_cornell/).
+TEST(SweepCli, AutoReferenceOnAMeshSceneTakesTheLargestDeclaredSpp) {
+    TempDir dir;
+    for (const std::string& scene : {std::string("builtin:sphere"), std::string(WEFT_SOURCE_DIR) + "/scenes/cornell.json"}) {
+        const auto out = runWeft("sweep " + scene + " --res 4x4 --technique volume.raymarch --vary step=1 --reference auto --no-plot -o " +
+                                 (dir / "s").string());
+        ASSERT_EQ(out.status, 0) << out.output;
+    }
+    std::vector<std::string> spps;
+    for (const auto& e : std::filesystem::directory_iterator(dir / "s" / "references")) {
+        weft::Metadata md;
+        readImage(e.path().string(), &md);
+        for (const auto& [k, v] : md)
+            if (k == "weft:spp") spps.push_back(v);
+    }
+    std::sort(spps.begin(), spps.end());
+    EXPECT_EQ(spps, (std::vector<std::string>{"256", "4096"}));
+}

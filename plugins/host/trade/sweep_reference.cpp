@@ -1,5 +1,6 @@
 #include "plugins/host/trade/sweep_reference.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -62,14 +63,14 @@ void SweepReferences::check(const std::vector<SweepRun>& runs, const Scene& scen
     }
     for (const SweepRun& run : runs) {
         try {
-            checkRender(referenceRequest(run), scene);
+            checkRender(referenceRequest(run, scene), scene);
         } catch (const Error& e) {
             throw Error("--reference auto for " + run.technique + ": " + e.what());
         }
     }
 }
 
-RenderRequest SweepReferences::referenceRequest(const SweepRun& run) const {
+RenderRequest SweepReferences::referenceRequest(const SweepRun& run, const Scene& scene) const {
     const ConvergedReference& ref = techniques().get(run.technique).reference;
     if (ref.technique.empty())
         throw Error(run.technique + " declares no converged reference: give --reference REF.exr");
@@ -82,11 +83,13 @@ RenderRequest SweepReferences::referenceRequest(const SweepRun& run) const {
     r.technique = ref.technique;
     r.sets.insert(r.sets.end(), ref.sets.begin(), ref.sets.end());
     r.spp = ref.spp;
+    if (!scene.meshes.empty())
+        for (const TechniqueInfo* t : techniques().all()) r.spp = std::max(*r.spp, t->reference.spp);
     return r;
 }
 
 std::string SweepReferences::cachePath(const SweepRun& run, const Scene& scene) const {
-    const RenderRequest q = effectiveRequest(referenceRequest(run), scene.render);
+    const RenderRequest q = effectiveRequest(referenceRequest(run, scene), scene.render);
     Fnv f;
     f.add(WEFT_VERSION).add(*q.technique).add(*q.resolution).add(std::to_string(*q.spp)).add(std::to_string(*q.seed));
     for (const std::string& s : q.sets) f.add(s);
@@ -106,7 +109,7 @@ const Image& SweepReferences::readOnce(const std::string& path) {
 const Image& SweepReferences::imageFor(const SweepRun& run, const LoadedScene& scene) {
     const std::string path = automatic() ? cachePath(run, *scene.scene) : spec_;
     if (automatic() && !loaded_.count(path) && !fs::exists(path)) {
-        RenderRequest r = referenceRequest(run);
+        RenderRequest r = referenceRequest(run, *scene.scene);
         r.output = path;
         fs::create_directories(cacheDir_);
         const RenderOutcome out = renderLoadedScene(r, scene);

@@ -22,9 +22,12 @@ public:
     // every run's image size; an automatic reference must exist for every
     // run's technique and pass a render's checks.
     void check(const std::vector<SweepRun>& runs, const Scene& scene);
-    // The request that renders the reference of `run` (auto only). Throws
-    // when the run's technique declares no reference.
-    RenderRequest referenceRequest(const SweepRun& run) const;
+    // The request that renders the reference of `run` on `scene` (auto
+    // only). Throws when the run's technique declares no reference. On a
+    // scene with meshes it takes at least the largest spp any technique
+    // declares: the surfaces' light sampling converges at the path tracer's
+    // count, whatever the volume family needs.
+    RenderRequest referenceRequest(const SweepRun& run, const Scene& scene) const;
     // Where the reference of `run` is (or will be) cached: a hash of the
     // request and of the files the scene was loaded from.
     std::string cachePath(const SweepRun& run, const Scene& scene) const;
