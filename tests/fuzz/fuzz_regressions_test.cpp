@@ -193,6 +193,14 @@ std::string regressionFile(const std::string& target, const std::string& name) {
     return slurp(std::filesystem::path(WEFT_SOURCE_DIR) / "tests/fuzz/regressions" / target / name);
 }
 
+// The stored finding `file` of `target` is refused in one line holding `text`.
+void expectFindingRefused(Target target, const std::string& dir, const std::string& file, const std::string& text) {
+    SCOPED_TRACE(dir + "/" + file);
+    const Outcome o = feed(target, regressionFile(dir, file));
+    expectRefused(o);
+    EXPECT_NE(o.message.find(text), std::string::npos) << o.message;
+}
+
 TEST(FuzzRegressions, EveryStoredFindingIsHandled) {
     const std::map<std::string, Target> targets{{"scene_json", sceneJson}, {"vdb", vdbFile}, {"obj", objFile}, {"ply", plyFile},
                                                 {"raw", rawVolume},        {"nrrd", nrrdVolume}, {"npy", npyVolume}, {"vtk", vtkVolume},
@@ -214,9 +222,7 @@ TEST(FuzzRegressions, EveryStoredFindingIsHandled) {
 // A binary PLY whose face indices lie far beyond its 4 vertices crashed
 // inside Assimp's vertex joining, which ran before weft checked them.
 TEST(FuzzRegressions, PlyFaceIndexOutOfRangeIsRefused) {
-    const Outcome o = feed(plyFile, regressionFile("ply", "face-index-out-of-range-be.ply"));
-    expectRefused(o);
-    EXPECT_NE(o.message.find("mesh.ply"), std::string::npos) << o.message;
+    expectFindingRefused(plyFile, "ply", "face-index-out-of-range-be.ply", "mesh.ply");
 }
 
 Outcome frameNameInput(char frameIndex, const std::string& name) {
@@ -242,55 +248,39 @@ TEST(FuzzRegressions, HugePrintfWidthIsNoWildcard) {
 // "property list uchar ply" (no value type, no name) and an "end_header"
 // with text after it crashed inside Assimp's PLY parser.
 TEST(FuzzRegressions, MalformedPlyPropertyIsRefusedBeforeAssimp) {
-    const Outcome o = feed(plyFile, regressionFile("ply", "list-property-without-name.ply"));
-    expectRefused(o);
-    EXPECT_NE(o.message.find("PLY header line 9 is malformed"), std::string::npos) << o.message;
+    expectFindingRefused(plyFile, "ply", "list-property-without-name.ply", "PLY header line 9 is malformed");
 }
-
-}  // namespace
-}  // namespace weft::fuzz
-
-namespace weft::fuzz {
-namespace {
 
 // "element face" declared twice, and vertices with x but no y or z: Assimp's
 // PLY reader wrote past its buffers (ASan's allocator found its own chunk
 // headers overwritten).
 TEST(FuzzRegressions, PlyElementDeclaredTwiceIsRefusedBeforeAssimp) {
-    const Outcome o = feed(plyFile, regressionFile("ply", "face-declared-twice-vertex-without-y.ply"));
-    expectRefused(o);
-    EXPECT_NE(o.message.find("declares element 'face' twice"), std::string::npos) << o.message;
+    expectFindingRefused(plyFile, "ply", "face-declared-twice-vertex-without-y.ply", "declares element 'face' twice");
     const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n";
     const Outcome noZ = feed(plyFile, header + "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
                                                "0 0\n1 0\n0 1\n3 0 1 2\n");
     EXPECT_NE(noZ.message.find("declares no vertex property z"), std::string::npos) << noZ.message;
 }
 
+// An element named "888888888888888888888888+88888888888fHce" kept
+// Assimp's PLY reader busy for 20 s (and 400 MB): names must be words.
+TEST(FuzzRegressions, PlyElementNameThatIsNoWordIsRefusedBeforeAssimp) {
+    expectFindingRefused(plyFile, "ply", "element-name-of-digits-and-plus-hangs-assimp.ply", "PLY header line 8 is malformed");
+}
+
 // A corrupt leaf buffer claimed 0x6e6f697373657270 compressed bytes (the
 // text "pression" read as a size): OpenVDB's blosc reader allocated it. A
 // normal build's operator new throws std::bad_alloc, which the loader turns
 // into one line; sanitized builds get the same (cmake/sanitize_bounded_new.cpp).
-// An element named "888888888888888888888888+88888888888fHce" kept
-// Assimp's PLY reader busy for 20 s (and 400 MB): names must be words.
-TEST(FuzzRegressions, PlyElementNameThatIsNoWordIsRefusedBeforeAssimp) {
-    const Outcome o = feed(plyFile, regressionFile("ply", "element-name-of-digits-and-plus-hangs-assimp.ply"));
-    expectRefused(o);
-    EXPECT_NE(o.message.find("PLY header line 8 is malformed"), std::string::npos) << o.message;
-}
-
 TEST(FuzzRegressions, VdbBloscSizeOfEightExabytesIsRefused) {
-    const Outcome o = feed(vdbFile, regressionFile("vdb", "blosc-claims-8-exabytes.vdb"));
-    expectRefused(o);
-    EXPECT_NE(o.message.find("volume.vdb"), std::string::npos) << o.message;
+    expectFindingRefused(vdbFile, "vdb", "blosc-claims-8-exabytes.vdb", "volume.vdb");
 }
 
 // A 40 KB file of format version 0: OpenVDB's reader of the pre-release
 // layouts, which the preflight did not walk, peaked at 1.7 GB before it
 // gave up. Such versions are now refused before OpenVDB opens the file.
 TEST(FuzzRegressions, VdbOfFormatVersionZeroIsRefusedBeforeOpenVdb) {
-    const Outcome o = feed(vdbFile, regressionFile("vdb", "format-version-0-peaks-at-1.7GB.vdb"));
-    expectRefused(o);
-    EXPECT_NE(o.message.find("file format version 0 is not one weft reads"), std::string::npos) << o.message;
+    expectFindingRefused(vdbFile, "vdb", "format-version-0-peaks-at-1.7GB.vdb", "file format version 0 is not one weft reads");
 }
 
 }  // namespace
