@@ -10,7 +10,8 @@
 
 namespace weft {
 
-// The names --compression takes, in OpenEXR's order.
+// The names --compression takes, in OpenEXR's order (a name's index is
+// its Imf::Compression value).
 const std::vector<std::string>& exrCompressionNames();
 // Whether a compression returns every channel bit for bit (pxr24 rounds
 // floats to 24 bits; b44 and b44a are lossy on half channels, dwaa and dwab

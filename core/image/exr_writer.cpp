@@ -17,17 +17,16 @@ namespace weft {
 
 namespace {
 
+// exrCompressionNames() lists the names in OpenEXR's own order, which the
+// file format fixes: a name's index is its Imf::Compression.
+static_assert(Imf::NO_COMPRESSION == 0 && Imf::DWAB_COMPRESSION == 9);
 Imf::Compression compressionNamed(const std::string& name) {
-    static const std::pair<const char*, Imf::Compression> table[] = {
-        {"none", Imf::NO_COMPRESSION}, {"rle", Imf::RLE_COMPRESSION},     {"zips", Imf::ZIPS_COMPRESSION},
-        {"zip", Imf::ZIP_COMPRESSION}, {"piz", Imf::PIZ_COMPRESSION},     {"pxr24", Imf::PXR24_COMPRESSION},
-        {"b44", Imf::B44_COMPRESSION}, {"b44a", Imf::B44A_COMPRESSION},   {"dwaa", Imf::DWAA_COMPRESSION},
-        {"dwab", Imf::DWAB_COMPRESSION}};
-    for (const auto& [n, c] : table)
-        if (name == n) return c;
-    std::string names;
-    for (const std::string& n : exrCompressionNames()) names += (names.empty() ? "" : ", ") + n;
-    throw Error("--compression '" + name + "': expected one of " + names);
+    const std::vector<std::string>& names = exrCompressionNames();
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it != names.end()) return Imf::Compression(it - names.begin());
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw Error("--compression '" + name + "': expected one of " + list);
 }
 
 // A channel as half: out-of-range values saturate at the largest finite half

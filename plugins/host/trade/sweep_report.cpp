@@ -137,8 +137,8 @@ void writeSweepCsv(const std::string& path, const std::vector<SweepResult>& resu
         const SweepResult& r = results[i];
         os << r.run.index + 1 << "," << r.run.technique;
         for (const std::string& k : keys) os << "," << csvField(varied(r, k));
-        if (!r.refused.empty()) {  // no time, samples or error; empty counters
-            os << ",,,,,,,,,,,,0,0," << csvField(r.refused) << std::string(counters.size(), ',') << "\n";
+        if (!r.refused.empty()) {  // params, times, samples and the six errors empty; off both fronts; no counters
+            os << std::string(11, ',') << ",0,0," << csvField(r.refused) << std::string(counters.size(), ',') << "\n";
             continue;
         }
         os << "," << csvField(r.params) << "," << number(r.times.medianMs) << "," << number(r.times.minMs) << ","
