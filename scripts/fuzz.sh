@@ -3,7 +3,8 @@
 # build-sanitize/ with ASan and UBSan, the build `make test-sanitize` uses)
 # and runs each for N seconds (default 60), then prints executions and
 # findings per target. FUZZ_TARGETS="obj ply" runs only those; FUZZ_RUNS=M
-# stops a target after M executions (its N seconds still bound it).
+# stops a target after M executions (its N seconds still bound it);
+# FUZZ_BUILD=0 runs the targets as built (a long campaign beside edits).
 # Under build-sanitize/fuzz/: seeds/ (written once), corpus/<target>/ (what
 # the runs found interesting, kept between runs), findings/<target>/ (the
 # inputs that crashed, leaked or hung), logs/<target>.log.
@@ -16,8 +17,10 @@ runs_limit="${FUZZ_RUNS:--1}"
 # The targets of tests/fuzz/CMakeLists.txt.
 read -r -a targets <<<"${FUZZ_TARGETS:-scene_json vdb obj ply raw nrrd npy vtk exr text}"
 
-weft_configure_sanitize
-cmake --build "$WEFT_SANITIZE_DIR" -j"$(weft_jobs)" --target weft_fuzz_all
+if [ "${FUZZ_BUILD:-1}" != 0 ]; then
+  weft_configure_sanitize
+  cmake --build "$WEFT_SANITIZE_DIR" -j"$(weft_jobs)" --target weft_fuzz_all
+fi
 bin="$WEFT_SANITIZE_DIR/bin"
 work="$WEFT_SANITIZE_DIR/fuzz"
 mkdir -p "$work/logs"

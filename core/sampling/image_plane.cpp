@@ -1,14 +1,38 @@
 #include "core/sampling/image_plane.hpp"
 
+#include <cmath>
+#include <string>
+
 #include "core/base/error.hpp"
 #include "core/base/rng.hpp"
 
 namespace weft {
 
-std::vector<ParamSpec> imagePlaneParamSpecs() {
+namespace {
+
+const char* plainSamplesDoc(PlainSamples plain) {
+    switch (plain) {
+        case PlainSamples::Jittered:
+            return "pixel centre at 1 spp, else a jittered grid in each pixel (a Latin hypercube when spp is not a square)";
+        case PlainSamples::Stratified: return "a Latin hypercube in each pixel";
+        case PlainSamples::Centres: return "pixel centres";
+        case PlainSamples::Uniform: break;
+    }
+    return "pixel centre at 1 spp, else uniform random";
+}
+
+// n where spp = n^2 (n > 1), else 0.
+int squareRootOf(int spp) {
+    const int n = int(std::lround(std::sqrt(double(spp))));
+    return n > 1 && n * n == spp ? n : 0;
+}
+
+}  // namespace
+
+std::vector<ParamSpec> imagePlaneParamSpecs(PlainSamples plain) {
     return {
-        stringParam("pattern", "", "image-plane sample positions: a pattern spec (weft pattern --list), e.g. "
-                                   "interleaved:4x4,basis=lp; empty: pixel centre at 1 spp, else uniform random",
+        stringParam("pattern", "", std::string("image-plane sample positions: a pattern spec (weft pattern --list), e.g. "
+                                               "interleaved:4x4,basis=lp; empty: ") + plainSamplesDoc(plain),
                     [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }),
         enumParam("filter", "box", {"box", "tent", "gaussian", "mitchell", "bspline", "raised_cosine"},
                   "reconstruction filter; wider than box, samples count across pixel boundaries (weighted average)"),
@@ -23,13 +47,14 @@ std::vector<ParamSpec> imagePlaneParamSpecs() {
     };
 }
 
-std::vector<ParamSpec> withImagePlaneParams(std::vector<ParamSpec> specs) {
-    for (ParamSpec& spec : imagePlaneParamSpecs()) specs.push_back(std::move(spec));
+std::vector<ParamSpec> withImagePlaneParams(std::vector<ParamSpec> specs, PlainSamples plain) {
+    for (ParamSpec& spec : imagePlaneParamSpecs(plain)) specs.push_back(std::move(spec));
     return specs;
 }
 
-ImagePlaneOptions readImagePlaneOptions(const ParamSet& p) {
+ImagePlaneOptions readImagePlaneOptions(const ParamSet& p, PlainSamples plain) {
     ImagePlaneOptions o;
+    o.plain = plain;
     o.pattern = p.getString("pattern");
     o.filter = ReconstructionFilter::kindFromName(p.getString("filter"));
     o.filterRadius = p.getFloat("filter_radius");
@@ -52,6 +77,7 @@ ImagePlane::ImagePlane(const ImagePlaneOptions& options, const RenderSettings& s
     if (!opt_.pattern.empty()) patterns_ = makePatternSet(opt_.pattern, settings.spp, seed);
     if (!opt_.pattern.empty() && opt_.adaptive == AdaptiveMode::Stochastic)
         extra_ = makePatternSet(opt_.pattern, opt_.extraSpp, hashCombine(seed, 1));
+    if (opt_.plain == PlainSamples::Jittered) jitterGrid_ = squareRootOf(settings.spp);
     const double stored = double(settings.width) * settings.height * settings.spp;
     if (opt_.adaptive == AdaptiveMode::Off && !(filter_.kind() == FilterKind::Box && filter_.radius() == 0.5) && stored > double(1 << 27))
         throw Error("a wide reconstruction filter keeps every sample: " + std::to_string(settings.width) + "x" +

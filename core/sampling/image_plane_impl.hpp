@@ -42,7 +42,16 @@ inline CameraSample ImagePlane::sample(int px, int py, int k, const PixelPattern
     if (const PatternPoint* set = first ? patterns.first : patterns.extra) {
         const PatternPoint& p = set[first ? k : k - settings_.spp];
         s.x = px + double(p.x), s.y = py + double(p.y), s.time = p.t;
-    } else if (opt_.plain != PlainSamples::Uniform) {
+    } else if (opt_.plain == PlainSamples::Jittered && first && settings_.spp > 1) {
+        const PixelSampler sampler(settings_.seed, px, py, std::uint32_t(k), std::uint32_t(settings_.spp));
+        if (const int n = jitterGrid_) {
+            s.x = px + (k % n + double(pixelRandom(settings_.seed, px, py, k, 1))) / n;
+            s.y = py + (k / n + double(pixelRandom(settings_.seed, px, py, k, 2))) / n;
+        } else {
+            s.x = px + double(sampler.get(0)), s.y = py + double(sampler.get(1));
+        }
+        s.time = sampler.get(kShutterDim);
+    } else if (opt_.plain == PlainSamples::Stratified || opt_.plain == PlainSamples::Centres) {
         const PixelSampler sampler(settings_.seed, px, py, std::uint32_t(k), std::uint32_t(settings_.spp));
         const bool centre = opt_.plain == PlainSamples::Centres;
         s.x = px + (centre ? 0.5 : double(sampler.get(0))), s.y = py + (centre ? 0.5 : double(sampler.get(1)));

@@ -118,7 +118,7 @@ std::vector<ParamSpec> pathtraceParams() {
         enumParam("glossy", "phong", {"phong", "blinn"}, "glossy lobe of Ks/Ns materials: Phong (mirror direction) or Blinn-Phong (half vector)"),
         enumParam("shadow_tracking", "ratio", {"ratio", "delta"}, "transmittance of shadow rays through volumes: ratio tracking (smooth) or delta tracking (binary)"),
     };
-    return withImagePlaneParams(std::move(specs));
+    return withImagePlaneParams(std::move(specs), PlainSamples::Stratified);
 }
 
 bool finite(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }

@@ -59,7 +59,7 @@ std::vector<ParamSpec> preintParams() {
                                 "per-pixel slice offsets from a pattern set's third coordinate, e.g. "
                                 "interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: none",
                                 [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }));
-    return withImagePlaneParams(std::move(specs));
+    return withImagePlaneParams(std::move(specs), PlainSamples::Jittered);
 }
 
 // Up to this many volumes per segment without a heap allocation.
@@ -84,7 +84,7 @@ std::pair<int, int> slicesIn(const SliceVolume& v, const Volume& reference, cons
 class Preint final : public Technique {
 public:
     Preint(const Scene& scene, const ParamSet& p)
-        : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")), plane_(readImagePlaneOptions(p)) {
+        : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")), plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         requireSliceableVolume(scene, "volume.preint");
         requireSurfaceLights(scene, "volume.preint");
         if (scene.volumes.size() > std::size_t(kMaxVolumes))

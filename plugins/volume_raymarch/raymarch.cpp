@@ -67,7 +67,7 @@ std::vector<ParamSpec> raymarchParams() {
                                           "e.g. interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: jitter or centre",
                     [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }),
     };
-    return withImagePlaneParams(std::move(specs));
+    return withImagePlaneParams(std::move(specs), PlainSamples::Jittered);
 }
 
 // Per-pixel-sample counts of one row's shader.
@@ -80,7 +80,7 @@ public:
     Raymarch(const Scene& scene, const ParamSet& p)
         : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), p.getBool("skip_empty"),
                   p.getString("offset_pattern")},
-          plane_(readImagePlaneOptions(p)) {
+          plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         if (params_.jitter && !params_.offsetPattern.empty())
             throw Error("volume.raymarch: jitter=true and offset_pattern both set the first sample's offset; choose one");
         for (const Volume& vol : scene.volumes)

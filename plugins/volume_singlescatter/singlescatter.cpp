@@ -17,7 +17,7 @@
 //
 // Camera samples come from the image plane (core/sampling/image_plane.hpp:
 // pattern, filter, adaptive...); with no pattern, the pixel centre at 1 spp
-// and uniform random positions beyond, as before.
+// and a jittered grid in each pixel beyond (PlainSamples::Jittered).
 //
 // compat=vdb_render also takes vdb_render's camera options and builds its
 // camera (scatter_params.hpp).
@@ -51,7 +51,7 @@ const Counter kMeshShadowRays{"mesh.shadow_rays", "shadow rays traced against th
 
 class SingleScatter final : public Technique {
 public:
-    SingleScatter(const Scene& scene, const ParamSet& p) : paramSet_(p), plane_(readImagePlaneOptions(p)) {
+    SingleScatter(const Scene& scene, const ParamSet& p) : paramSet_(p), plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         requireSurfaceLights(scene, "volume.singlescatter");
     }
 
@@ -109,7 +109,7 @@ private:
 const TechniqueRegistrar registrar{{
     "volume.singlescatter",
     "single scattering from point, directional and emissive lights, vdb_render's model and names or physical=true, faster estimators",
-    ParamTable("volume.singlescatter", withImagePlaneParams(scatterParamSpecs())),
+    ParamTable("volume.singlescatter", withImagePlaneParams(scatterParamSpecs(), PlainSamples::Jittered)),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<SingleScatter>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
