@@ -63,17 +63,37 @@ private:
 };
 
 struct PartFacts {
-    bool hasWindow = false, hasTiles = false, hasChunkCount = false;
+    bool hasWindow = false, hasDisplay = false, hasTiles = false, hasChunkCount = false;
     std::int32_t window[4] = {0, 0, 0, 0};
+    std::int32_t display[4] = {0, 0, 0, 0};
+    std::uint64_t channels = 0;
     std::uint32_t tile[2] = {1, 1};
     int compression = 0;
     std::uint64_t chunkCount = 0;
 };
 
+// A chlist is a list of (name, 16 bytes of layout) ended by an empty name.
+std::uint64_t countChannels(HeaderReader& r, std::uint32_t size) {
+    std::string bytes(size, '\0');
+    r.bytes(bytes.data(), size, "channels");
+    std::uint64_t count = 0;
+    for (std::size_t at = 0; at < bytes.size() && bytes[at] != '\0'; ++count) {
+        const std::size_t end = bytes.find('\0', at);
+        if (end == std::string::npos) break;
+        at = end + 1 + 16;
+    }
+    return count;
+}
+
 void readValue(HeaderReader& r, const std::string& name, const std::string& type, std::uint32_t size, PartFacts& f) {
     if (name == "dataWindow" && type == "box2i" && size == 16) {
         for (std::int32_t& v : f.window) v = std::int32_t(r.u32("dataWindow"));
         f.hasWindow = true;
+    } else if (name == "displayWindow" && type == "box2i" && size == 16) {
+        for (std::int32_t& v : f.display) v = std::int32_t(r.u32("displayWindow"));
+        f.hasDisplay = true;
+    } else if (name == "channels" && type == "chlist") {
+        f.channels = countChannels(r, size);
     } else if (name == "tiles" && type == "tiledesc" && size == 9) {
         f.tile[0] = r.u32("tiles"), f.tile[1] = r.u32("tiles");
         r.skip(1);
@@ -112,6 +132,16 @@ bool readHeader(HeaderReader& r, PartFacts& f) {
     }
 }
 
+// Sums and products of declared sizes saturate: a header may claim 2^64.
+std::uint64_t saturatingMul(std::uint64_t a, std::uint64_t b) { return b && a > UINT64_MAX / b ? UINT64_MAX : a * b; }
+std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+
+// The area of a box2i (x min, y min, x max, y max); 0 when it is empty.
+std::uint64_t areaOf(const std::int32_t box[4]) {
+    const std::int64_t w = std::int64_t(box[2]) - box[0] + 1, h = std::int64_t(box[3]) - box[1] + 1;
+    return w > 0 && h > 0 ? saturatingMul(std::uint64_t(w), std::uint64_t(h)) : 0;
+}
+
 // The chunks the part's offset table lists (a lower bound for mip-mapped tiles).
 std::uint64_t chunksOf(const PartFacts& f) {
     if (f.hasChunkCount) return f.chunkCount;
@@ -125,8 +155,9 @@ std::uint64_t chunksOf(const PartFacts& f) {
 
 }  // namespace
 
-void preflightExr(const std::string& path) {
+ExrDeclared preflightExr(const std::string& path) {
     HeaderReader r(path);
+    ExrDeclared declared;
     if (r.u32("magic number") != 20000630u) r.fail("not an EXR file (no EXR magic number)");
     const bool multiPart = r.u32("version") & kMultiPartFlag;
     std::uint64_t chunks = 0;
@@ -134,11 +165,16 @@ void preflightExr(const std::string& path) {
         PartFacts f;
         if (!readHeader(r, f)) break;
         chunks += chunksOf(f);
+        const std::uint64_t area = f.hasWindow ? areaOf(f.window) : 0;
+        declared.dataPixels = saturatingAdd(declared.dataPixels, area);
+        declared.displayPixels = saturatingAdd(declared.displayPixels, f.hasDisplay ? areaOf(f.display) : 0);
+        declared.pixelValues = saturatingAdd(declared.pixelValues, saturatingMul(area, f.channels));
         if (!multiPart) break;
     }
     if (chunks > r.left() / 8)
         r.fail("its header needs an offset table of " + std::to_string(chunks) + " chunks (8 bytes each), more than the " +
                std::to_string(r.left()) + " bytes left in the file (corrupt or cut short)");
+    return declared;
 }
 
 }  // namespace weft

@@ -11,10 +11,19 @@
 // can hold the offset table its chunk count needs (8 bytes a chunk: the
 // chunkCount attribute of a multi-part file, else the data window's lines
 // per block or tiles).
+#include <cstdint>
 #include <string>
 
 namespace weft {
 
-void preflightExr(const std::string& path);
+// What the file's headers declare, summed over its parts: a reader would
+// allocate about pixelValues floats for them.
+struct ExrDeclared {
+    std::uint64_t dataPixels = 0;     // data window areas
+    std::uint64_t displayPixels = 0;  // display window areas
+    std::uint64_t pixelValues = 0;    // data window area times channel count
+};
+
+ExrDeclared preflightExr(const std::string& path);
 
 }  // namespace weft

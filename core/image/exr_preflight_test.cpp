@@ -37,6 +37,16 @@ TEST(ExrPreflight, PassesWhatWeftWrites) {
     EXPECT_EQ(preflightError(dir, written(dir, &tile)), "");
 }
 
+TEST(ExrPreflight, ReportsWhatTheHeaderDeclares) {
+    test::TempDir dir;
+    const auto path = dir / "c.exr";
+    writeExr(Image(8, 4, {"R", "G", "B", "A", "N.X", "N.Y", "N.Z"}), path.string(), {}, ImageWindow{0, 1, 8, 6});
+    const ExrDeclared d = preflightExr(path.string());
+    EXPECT_EQ(d.dataPixels, 32u);
+    EXPECT_EQ(d.displayPixels, 48u);
+    EXPECT_EQ(d.pixelValues, 32u * 7);
+}
+
 TEST(ExrPreflight, RefusesSizesTheFileCannotHold) {
     test::TempDir dir;
     const std::string good = written(dir);

@@ -3,6 +3,7 @@
 // read them (core/image/image_io.cpp through the OpenImageIO module), then
 // what each command does next with the image: the comparison metrics, the
 // tile checks of a merge and the A-Trous filter's channel lookup.
+#include "core/image/exr_preflight.hpp"
 #include "core/image/image_compare.hpp"
 #include "core/image/image_io.hpp"
 #include "core/screen/atrous.hpp"
@@ -11,8 +12,21 @@
 
 namespace weft::fuzz {
 
+// Headers that declare more than this many pixel values (1 MB of floats) are
+// legitimate, but reading them would spend each execution clearing buffers
+// instead of parsing: such inputs are checked by the preflight only.
+constexpr std::uint64_t kMaxFuzzedPixelValues = 1u << 18;
+
 inline Outcome exrFile(const std::uint8_t* data, std::size_t size) {
     const std::string path = writeScratch("image.exr", asText(data, size));
+    ExrDeclared declared;
+    const Outcome preflight = guarded([&] { declared = preflightExr(path); });
+    if (!preflight.accepted) return preflight;
+    if (declared.pixelValues > kMaxFuzzedPixelValues || declared.displayPixels > kMaxFuzzedPixelValues) {
+        Outcome o{true, ""};
+        o.skipped = true;
+        return o;
+    }
     const Outcome read = guarded([&] {
         Metadata metadata;
         ImageWindow window;

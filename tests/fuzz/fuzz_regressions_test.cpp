@@ -121,6 +121,13 @@ TEST(FuzzTargets, ExrFile) {
     expectAccepted(feed(exrFile, bytes));
     expectRefused(feed(exrFile, bytes.substr(0, bytes.size() - 20)));
     expectRefused(feed(exrFile, "not an exr"));
+    // A legitimate image too large to read per input is checked, then skipped.
+    Image large(1024, 512, {"R", "G", "B", "A"});
+    const auto largePath = scratchDir() / "large.exr";
+    writeExr(large, largePath.string(), {});
+    EXPECT_TRUE(feed(exrFile, slurp(largePath)).skipped);
+    const std::string largeBytes = slurp(largePath);
+    expectRefused(feed(exrFile, largeBytes.substr(0, 200)));
 }
 
 TEST(FuzzTargets, TextParsers) {
