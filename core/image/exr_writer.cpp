@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "core/base/error.hpp"
+#include "core/image/half_pixels.hpp"
 
 namespace weft {
 
@@ -29,20 +30,6 @@ Imf::Compression compressionNamed(const std::string& name) {
     throw Error("--compression '" + name + "': expected one of " + list);
 }
 
-// A channel as half: out-of-range values saturate at the largest finite half
-// (a float beyond 65504 would become Inf), NaN is written as 0.
-std::vector<Imath::half> halfPlane(const Image& image, int c) {
-    const int w = image.width(), h = image.height();
-    std::vector<Imath::half> plane(std::size_t(w) * h);
-    const float top = float(HALF_MAX);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const float v = image.at(x, y, c);
-            plane[std::size_t(y) * w + x] = Imath::half(std::isnan(v) ? 0.0f : std::clamp(v, -top, top));
-        }
-    return plane;
-}
-
 }  // namespace
 
 void writeExrFile(const std::string& path, const Image& image,
@@ -58,23 +45,28 @@ void writeExrFile(const std::string& path, const Image& image,
         if (header.find(key) == header.end() || header.findTypedAttribute<Imf::StringAttribute>(key) != nullptr)
             header.insert(key, Imf::StringAttribute(value));
     const std::vector<bool> half = halfChannels(image.channelNames(), encoding.pixelTypes);
-    std::vector<std::vector<Imath::half>> halfPlanes(n);
     Imf::FrameBuffer frame;
-    const std::size_t xStride = sizeof(float) * n, yStride = xStride * w;
-    // OpenEXR addresses pixels by their frame coordinates: shift the base by the data window's origin.
-    const char* base = reinterpret_cast<const char*>(image.pixel(0, 0)) - x * xStride - y * yStride;
+    // Half channels read a half copy of the whole image, interleaved as the
+    // float one: one contiguous conversion pass instead of one strided pass a channel.
+    std::vector<Imath::half> halves;
+    if (std::find(half.begin(), half.end(), true) != half.end()) {
+        halves.resize(image.data().size());
+        toHalfSaturated(image.data().data(), halves.size(), halves.data());
+    }
+    // OpenEXR addresses pixels by their frame coordinates: shift each base by the data window's origin.
+    const auto originOf = [&](const void* pixels, std::size_t valueBytes) {
+        const std::size_t xStride = valueBytes * n, yStride = xStride * w;
+        return reinterpret_cast<const char*>(pixels) - x * xStride - y * yStride;
+    };
+    const char* floatBase = originOf(image.data().data(), sizeof(float));
+    const char* halfBase = halves.empty() ? nullptr : originOf(halves.data(), sizeof(Imath::half));
     for (int c = 0; c < n; ++c) {
         const std::string& name = image.channelNames()[c];
-        if (half[c]) {
-            halfPlanes[c] = halfPlane(image, c);
-            const std::size_t hx = sizeof(Imath::half), hy = hx * w;
-            char* origin = reinterpret_cast<char*>(halfPlanes[c].data()) - x * hx - y * hy;
-            header.channels().insert(name, Imf::Channel(Imf::HALF));
-            frame.insert(name, Imf::Slice(Imf::HALF, origin, hx, hy));
-        } else {
-            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-            frame.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(base) + c * sizeof(float), xStride, yStride));
-        }
+        const Imf::PixelType type = half[c] ? Imf::HALF : Imf::FLOAT;
+        const std::size_t bytes = half[c] ? sizeof(Imath::half) : sizeof(float);
+        char* origin = const_cast<char*>(half[c] ? halfBase : floatBase) + c * bytes;
+        header.channels().insert(name, Imf::Channel(type));
+        frame.insert(name, Imf::Slice(type, origin, bytes * n, bytes * n * w));
     }
     try {
         // OpenEXR's pool is process-wide: sized once per write to the request's threads.
