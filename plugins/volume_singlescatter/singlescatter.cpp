@@ -115,7 +115,8 @@ const TechniqueRegistrar registrar{{
     /*renders=*/Content::VolumesAndMeshes,
     /*bytesPerPixel=*/32,
     /*reference=*/{"volume.singlescatter", {"step=0.1", "shadowstep=0.25", "estimator=raymarch"}, 64},
-    /*knobs=*/{{"step", {"2", "1", "0.5"}}, {"shadowstep", {"6", "3", "1"}}, {"spp", {"1", "4", "16"}}},
+    /*knobs=*/{{"step", {"2", "1", "0.5"}}, {"shadowstep", {"6", "3", "1"}}, {"spp", {"1", "4", "16"}},
+                 {"estimator", {"cached", "raymarch"}}},
 }};
 
 }  // namespace
