@@ -10,3 +10,4 @@ python3 bench/kraus_tables.py "$@"
 /usr/bin/python3 bench/bauszat_tables.py
 /usr/bin/python3 bench/sweep_overhead.py
 /usr/bin/python3 bench/exr_write.py
+/usr/bin/python3 bench/thread_scaling.py
