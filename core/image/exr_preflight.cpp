@@ -72,48 +72,80 @@ struct PartFacts {
     std::uint64_t chunkCount = 0;
 };
 
-// A chlist is a list of (name, 16 bytes of layout) ended by an empty name.
+bool printable(const std::string& s) {
+    for (unsigned char c : s)
+        if (c < 0x20 || c >= 0x7f) return false;
+    return true;
+}
+
+// The byte sizes of the attribute types whose values OpenEXR reads field by
+// field, whatever size the attribute states: a size that differs would make
+// OpenEXR read a different header than this walk (a dataWindow hidden
+// inside a longer attribute, say), so it is refused.
+int fixedSizeOf(const std::string& type) {
+    static const std::pair<const char*, int> sizes[] = {
+        {"box2i", 16}, {"box2f", 16}, {"int", 4}, {"float", 4}, {"double", 8}, {"v2i", 8}, {"v2f", 8},
+        {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}, {"m33f", 36}, {"m44f", 64}, {"m33d", 72},
+        {"m44d", 128}, {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1},
+        {"tiledesc", 9}, {"chromaticities", 32}, {"keycode", 28}, {"timecode", 8}, {"rational", 8}};
+    for (const auto& [name, size] : sizes)
+        if (type == name) return size;
+    return -1;
+}
+
+// A chlist is a list of (name, 16 bytes of layout) ended by an empty name,
+// read by OpenEXR up to that empty name: it must end exactly where the
+// attribute's size says.
 std::uint64_t countChannels(HeaderReader& r, std::uint32_t size) {
     std::string bytes(size, '\0');
     r.bytes(bytes.data(), size, "channels");
     std::uint64_t count = 0;
-    for (std::size_t at = 0; at < bytes.size() && bytes[at] != '\0'; ++count) {
+    std::size_t at = 0;
+    for (; at < bytes.size() && bytes[at] != '\0'; ++count) {
         const std::size_t end = bytes.find('\0', at);
-        if (end == std::string::npos) break;
+        if (end == std::string::npos || end + 1 + 16 > bytes.size()) break;
         at = end + 1 + 16;
     }
+    if (at + 1 != bytes.size())
+        r.fail("the channel list does not end where its attribute's " + std::to_string(size) + " bytes end (corrupt)");
     return count;
 }
 
 void readValue(HeaderReader& r, const std::string& name, const std::string& type, std::uint32_t size, PartFacts& f) {
-    if (name == "dataWindow" && type == "box2i" && size == 16) {
+    const int fixed = fixedSizeOf(type);
+    if (fixed >= 0 && size != std::uint32_t(fixed))
+        r.fail("an attribute of type " + (printable(type) ? quoteValue(type) : std::string("?")) + " holds " +
+               std::to_string(size) + " bytes instead of " + std::to_string(fixed) + " (corrupt)");
+    if (name == "dataWindow" && type == "box2i") {
         for (std::int32_t& v : f.window) v = std::int32_t(r.u32("dataWindow"));
         f.hasWindow = true;
-    } else if (name == "displayWindow" && type == "box2i" && size == 16) {
+    } else if (name == "displayWindow" && type == "box2i") {
         for (std::int32_t& v : f.display) v = std::int32_t(r.u32("displayWindow"));
         f.hasDisplay = true;
-    } else if (name == "channels" && type == "chlist") {
-        f.channels = countChannels(r, size);
-    } else if (name == "tiles" && type == "tiledesc" && size == 9) {
+    } else if (type == "chlist") {
+        const std::uint64_t channels = countChannels(r, size);
+        if (name == "channels") f.channels = channels;
+    } else if (type == "preview") {  // OpenEXR allocates width x height RGBA pixels from these two words
+        if (size < 8) r.fail("a preview attribute of " + std::to_string(size) + " bytes (corrupt)");
+        const std::uint64_t w = r.u32("preview"), h = r.u32("preview");
+        if (w * h * 4 != size - 8u)
+            r.fail("a preview image of " + std::to_string(w) + "x" + std::to_string(h) + " in " + std::to_string(size) +
+                   " bytes (corrupt)");
+        r.skip(size - 8u);
+    } else if (name == "tiles" && type == "tiledesc") {
         f.tile[0] = r.u32("tiles"), f.tile[1] = r.u32("tiles");
         r.skip(1);
         f.hasTiles = true;
-    } else if (name == "compression" && type == "compression" && size == 1) {
+    } else if (name == "compression" && type == "compression") {
         unsigned char c = 0;
         r.bytes(&c, 1, "compression");
         f.compression = c;
-    } else if (name == "chunkCount" && type == "int" && size == 4) {
+    } else if (name == "chunkCount" && type == "int") {
         f.chunkCount = r.u32("chunkCount");
         f.hasChunkCount = true;
     } else {
         r.skip(size);
     }
-}
-
-bool printable(const std::string& s) {
-    for (unsigned char c : s)
-        if (c < 0x20 || c >= 0x7f) return false;
-    return true;
 }
 
 // One header's attributes; false when it is the empty header ending a multi-part file's list.

@@ -47,6 +47,25 @@ TEST(ExrPreflight, ReportsWhatTheHeaderDeclares) {
     EXPECT_EQ(d.pixelValues, 32u * 7);
 }
 
+// OpenEXR reads a channel list up to its empty name and a box2i as 16 bytes,
+// whatever size the attribute states: a different size would hide part of
+// the header from this walk (a fuzzed file hid a 2359300-pixel dataWindow so).
+TEST(ExrPreflight, RefusesAttributeSizesOpenExrWouldReadOtherwise) {
+    test::TempDir dir;
+    const std::string good = written(dir);
+    std::string bad = good;
+    const std::size_t chlist = bad.find(std::string("channels\0chlist\0", 16));
+    ASSERT_NE(chlist, std::string::npos);
+    putWord(bad, chlist + 16, std::uint8_t(bad[chlist + 16]) + 18u);
+    EXPECT_NE(preflightError(dir, bad).find("the channel list does not end where its attribute's"), std::string::npos);
+    bad = good;
+    const std::size_t window = bad.find(std::string("dataWindow\0box2i\0", 17));
+    ASSERT_NE(window, std::string::npos);
+    putWord(bad, window + 17, 20);
+    EXPECT_NE(preflightError(dir, bad).find("type 'box2i' holds 20 bytes instead of 16"), std::string::npos)
+        << preflightError(dir, bad);
+}
+
 TEST(ExrPreflight, RefusesSizesTheFileCannotHold) {
     test::TempDir dir;
     const std::string good = written(dir);

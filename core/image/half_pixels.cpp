@@ -4,6 +4,7 @@
 #include <cmath>
 
 #if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
 #include <immintrin.h>
 #define WEFT_HAVE_F16C_PATH 1
 #endif
@@ -31,8 +32,12 @@ __attribute__((target("avx,f16c"))) std::size_t toHalfF16c(const float* in, std:
     return i;
 }
 
+// AVX (which the compiler's check also confirms the OS saves) and F16C (CPUID leaf 1, ECX).
 bool cpuHasF16c() {
-    static const bool has = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
+    static const bool has = [] {
+        unsigned a = 0, b = 0, c = 0, d = 0;
+        return __builtin_cpu_supports("avx") && __get_cpuid(1, &a, &b, &c, &d) && (c & bit_F16C);
+    }();
     return has;
 }
 #endif

@@ -290,5 +290,14 @@ TEST(FuzzRegressions, VdbOfFormatVersionZeroIsRefusedBeforeOpenVdb) {
     expectFindingRefused(vdbFile, "vdb", "format-version-0-peaks-at-1.7GB.vdb", "file format version 0 is not one weft reads");
 }
 
+// A channel list that stated 73 bytes but whose list, read as OpenEXR reads
+// it, ended elsewhere: the preflight's walk and OpenEXR's saw different
+// headers, and OpenEXR's held a data window 2359300 pixels wide, which it
+// allocated (370 ms under ASan) before finding the data missing.
+TEST(FuzzRegressions, ExrChannelListOfAnotherSizeIsRefusedBeforeOpenExr) {
+    expectFindingRefused(exrFile, "exr", "chlist-size-hides-a-wide-data-window.exr",
+                         "the channel list does not end where its attribute's 73 bytes end");
+}
+
 }  // namespace
 }  // namespace weft::fuzz
