@@ -1,6 +1,7 @@
 #include "plugins/host/tile_merge.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <map>
 
 #include "core/base/error.hpp"
@@ -91,11 +92,28 @@ std::vector<Tile> readCheckedSet(const std::vector<std::string>& paths) {
     return tiles;
 }
 
+// A counter attribute as a non-negative count; anything else is a corrupt tile.
+long long counterValue(const Tile& t, const std::string& key, const std::string& value) {
+    long long n = 0;
+    std::size_t used = 0;
+    try {
+        n = std::stoll(value, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != value.size() || n < 0)
+        throw Error("merge: '" + t.path + "': attribute " + key + " is not a count (corrupt tile)");
+    return n;
+}
+
 Metadata mergedMetadata(const std::vector<Tile>& tiles) {
     std::map<std::string, long long> counters;
     for (const Tile& t : tiles)
         for (const auto& [k, v] : t.metadata)
-            if (k.rfind("weft:counter:", 0) == 0) counters[k] += std::stoll(v);
+            if (k.rfind("weft:counter:", 0) == 0) {
+                const long long n = counterValue(t, k, v);
+                counters[k] = n > LLONG_MAX - counters[k] ? LLONG_MAX : counters[k] + n;
+            }
     Metadata md;
     for (const auto& [k, v] : tiles.front().metadata) {
         if (k.rfind("weft:counter:", 0) == 0) md.emplace_back(k, std::to_string(counters[k]));

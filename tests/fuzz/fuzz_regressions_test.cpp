@@ -299,5 +299,15 @@ TEST(FuzzRegressions, ExrChannelListOfAnotherSizeIsRefusedBeforeOpenExr) {
                          "the channel list does not end where its attribute's 73 bytes end");
 }
 
+// A complete tile whose weft:counter: attribute was no number: the merge's
+// std::stoll threw std::invalid_argument out of weft merge.
+TEST(FuzzRegressions, ExrTileCounterThatIsNoNumberIsRefused) {
+    const std::string path = writeScratch("tile.exr", regressionFile("exr", "tile-counter-that-is-no-number.exr"));
+    const Outcome merged = guarded([&] { mergeTiles({path}); });
+    expectRefused(merged);
+    EXPECT_NE(merged.message.find("is not a count (corrupt tile)"), std::string::npos) << merged.message;
+    EXPECT_TRUE(feed(exrFile, regressionFile("exr", "tile-counter-that-is-no-number.exr")).accepted);  // as an image it reads
+}
+
 }  // namespace
 }  // namespace weft::fuzz
