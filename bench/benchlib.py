@@ -25,11 +25,16 @@ def run(args):
     return run_timed(args)[1]
 
 
-def rmse(a, b):
+def diff_all(a, b):
+    """The "all" row of `weft diff a b`: RMSE, relMSE, PSNR, SSIM, max abs."""
     for line in run([WEFT, "diff", a, b]).splitlines():
         if line.startswith("all "):
-            return float(line.split()[1])
-    return float("nan")
+            return [float(v) for v in line.split()[1:]]
+    return [float("nan")] * 5
+
+
+def rmse(a, b):
+    return diff_all(a, b)[0]
 
 
 def prepare_aneurism(data, out):

@@ -17,7 +17,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import ROOT, WEFT, run  # noqa: E402
+from benchlib import ROOT, WEFT, diff_all, run  # noqa: E402
 
 SMOKE = os.path.join(ROOT, "data", "smoke_small.vdb")
 CORNELL = os.path.join(ROOT, "scenes", "cornell.json")
@@ -46,13 +46,6 @@ def render_ms(work, tag, technique, scene, extra, res, threads, repeat):
     return statistics.median(times), out
 
 
-def max_abs(a, b):
-    for line in run([WEFT, "diff", a, b]).splitlines():
-        if line.startswith("all "):
-            return float(line.split()[-1])
-    return float("nan")
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--res", default="256x256")
@@ -66,7 +59,7 @@ def main():
             many, b = render_ms(work, "many", technique, scene, extra, args.res, cores, args.repeat)
             ratio = one / many if many > 0 else float("nan")
             held += ratio >= 1.9
-            rows.append((technique, one, many, ratio, max_abs(a, b)))
+            rows.append((technique, one, many, ratio, diff_all(a, b)[-1]))
     print("Render time at %s, 1 and %d threads, median of %d" % (args.res, cores, args.repeat))
     print("| technique | 1 thread (ms) | %d threads (ms) | speed-up | images max abs diff |" % cores)
     print("|---|---:|---:|---:|---:|")

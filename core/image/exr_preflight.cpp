@@ -72,6 +72,10 @@ struct PartFacts {
     std::uint64_t chunkCount = 0;
 };
 
+// Sums and products of declared sizes saturate: a header may claim 2^64.
+std::uint64_t saturatingMul(std::uint64_t a, std::uint64_t b) { return b && a > UINT64_MAX / b ? UINT64_MAX : a * b; }
+std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+
 bool printable(const std::string& s) {
     for (unsigned char c : s)
         if (c < 0x20 || c >= 0x7f) return false;
@@ -128,7 +132,7 @@ void readValue(HeaderReader& r, const std::string& name, const std::string& type
     } else if (type == "preview") {  // OpenEXR allocates width x height RGBA pixels from these two words
         if (size < 8) r.fail("a preview attribute of " + std::to_string(size) + " bytes (corrupt)");
         const std::uint64_t w = r.u32("preview"), h = r.u32("preview");
-        if (w * h * 4 != size - 8u)
+        if (saturatingMul(saturatingMul(w, h), 4) != size - 8u)
             r.fail("a preview image of " + std::to_string(w) + "x" + std::to_string(h) + " in " + std::to_string(size) +
                    " bytes (corrupt)");
         r.skip(size - 8u);
@@ -163,10 +167,6 @@ bool readHeader(HeaderReader& r, PartFacts& f) {
         readValue(r, name, type, size, f);
     }
 }
-
-// Sums and products of declared sizes saturate: a header may claim 2^64.
-std::uint64_t saturatingMul(std::uint64_t a, std::uint64_t b) { return b && a > UINT64_MAX / b ? UINT64_MAX : a * b; }
-std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
 
 // The area of a box2i (x min, y min, x max, y max); 0 when it is empty.
 std::uint64_t areaOf(const std::int32_t box[4]) {

@@ -64,6 +64,18 @@ TEST(ExrPreflight, RefusesAttributeSizesOpenExrWouldReadOtherwise) {
     putWord(bad, window + 17, 20);
     EXPECT_NE(preflightError(dir, bad).find("type 'box2i' holds 20 bytes instead of 16"), std::string::npos)
         << preflightError(dir, bad);
+    // A preview attribute (OpenEXR allocates its width x height pixels) must hold exactly them,
+    // also where width x height x 4 would wrap around 2^64.
+    const auto withPreview = [&](std::uint32_t w, std::uint32_t h, std::uint32_t pixelBytes) {
+        std::string attr = std::string("preview\0preview\0", 16) + std::string(4 + 8 + pixelBytes, '\0');
+        putWord(attr, 16, 8 + pixelBytes), putWord(attr, 20, w), putWord(attr, 24, h);
+        return good.substr(0, 8) + attr + good.substr(8);
+    };
+    EXPECT_EQ(preflightError(dir, withPreview(1, 1, 4)), "");
+    EXPECT_NE(preflightError(dir, withPreview(2, 1, 4)).find("a preview image of 2x1 in 12 bytes"), std::string::npos);
+    // 2^31 x 2^31 x 4 bytes is 2^64, which wraps to the 0 bytes this one holds.
+    EXPECT_NE(preflightError(dir, withPreview(1u << 31, 1u << 31, 0)).find("a preview image of 2147483648x2147483648"),
+              std::string::npos);
 }
 
 TEST(ExrPreflight, RefusesSizesTheFileCannotHold) {

@@ -9,7 +9,6 @@
 #include <OpenEXR/ImfThreading.h>
 
 #include <algorithm>
-#include <cmath>
 
 #include "core/base/error.hpp"
 #include "core/image/half_pixels.hpp"

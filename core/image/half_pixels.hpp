@@ -7,7 +7,6 @@
 #include <Imath/half.h>
 
 #include <cstddef>
-#include <vector>
 
 namespace weft {
 

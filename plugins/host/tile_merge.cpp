@@ -6,6 +6,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/frames.hpp"
+#include "core/volume/header_text.hpp"
 #include "plugins/host/render_job.hpp"
 
 namespace weft {
@@ -95,13 +96,7 @@ std::vector<Tile> readCheckedSet(const std::vector<std::string>& paths) {
 // A counter attribute as a non-negative count; anything else is a corrupt tile.
 long long counterValue(const Tile& t, const std::string& key, const std::string& value) {
     long long n = 0;
-    std::size_t used = 0;
-    try {
-        n = std::stoll(value, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != value.size() || n < 0)
+    if (!parseWhole(value, n) || n < 0)
         throw Error("merge: '" + t.path + "': attribute " + key + " is not a count (corrupt tile)");
     return n;
 }
