@@ -8,6 +8,7 @@
 
 #include "core/base/rng.hpp"
 #include "oracles/feature_distance.hpp"
+#include "oracles/oracle_cache.hpp"
 #include "tests/support/render_helpers.hpp"
 
 using namespace weft;
@@ -171,7 +172,9 @@ TEST(Oracles, BuiltFieldsAndImagesIdenticalOnOneAndTwoThreads) {
     const std::string smoke = std::string(WEFT_SOURCE_DIR) + "/data/smoke_small.vdb";
     for (const char* oracle : {"gradient_alpha", "vdb_topology", "majorant"}) {
         const std::vector<std::string> sets{std::string("oracle=") + oracle};
+        clearOracleCache();  // each render builds its own field
         const RenderOutcome a = test::render(smoke, "48x40", sets, "volume.adaptive3d", 1);
+        clearOracleCache();
         const RenderOutcome b = test::render(smoke, "48x40", sets, "volume.adaptive3d", 2);
         EXPECT_EQ(a.image.data(), b.image.data()) << oracle;
         EXPECT_EQ(a.counters, b.counters) << oracle;

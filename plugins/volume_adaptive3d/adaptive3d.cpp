@@ -29,7 +29,9 @@
 // Counters (the paper's operations): volume.samples (SAMPLE DATA),
 // oracle.samples (SAMPLE ORACLE), synthesis.ops (SYNTHESIZE DATA+ORACLE of
 // one pixel), composite.ops (ACCUMULATE COLOR of a segment), slices; with
-// meshes also rays.surface and rays.shadow.
+// meshes also rays.surface and rays.shadow. oracle.built / oracle.reused say
+// whether each volume's oracle field was built or found built by an earlier
+// render of the process (oracles/oracle_cache.hpp: frames, sweeps).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -41,7 +43,7 @@
 #include "core/lighting/surface_shading.hpp"
 #include "core/volume/segment_tables.hpp"
 #include "core/volume/slices.hpp"
-#include "oracles/oracle.hpp"
+#include "oracles/oracle_cache.hpp"
 #include "core/volume/slice_renderer.hpp"
 #include "plugins/technique.hpp"
 #include "plugins/volume_adaptive3d/pyramid.hpp"
@@ -51,6 +53,8 @@ namespace weft {
 namespace {
 
 const Counter kPreintegrationTables{"preintegration.tables", "pre-integration tables built"};
+const Counter kOracleBuilt{"oracle.built", "oracle fields built by this render (one per volume)"};
+const Counter kOracleReused{"oracle.reused", "oracle fields reused from an earlier render of this process (same volume, transfer function, spacing, lmax, epsilon)"};
 
 struct AdaptiveParams {
     SliceParams slice;
@@ -78,8 +82,12 @@ public:
         std::vector<OracleField> fields;
         {
             ScopedTimer timer(ctx.timings, "oracle");
-            for (const SliceVolume& v : volumes)
-                fields.push_back(oracle_.build({*v.volume, params_.slice.spacing * v.lengthScale, params_.lmax, params_.epsilon}));
+            for (const SliceVolume& v : volumes) {
+                SharedOracleField shared =
+                    sharedOracleField(oracle_, {*v.volume, params_.slice.spacing * v.lengthScale, params_.lmax, params_.epsilon});
+                ctx.counters.add(shared.reused ? kOracleReused : kOracleBuilt, 1);
+                fields.push_back(std::move(shared.field));
+            }
         }
         Pyramid pyramid(scene.camera, volumes, slices, params_.lmax, pw, ph, s.width, s.height);
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // no BVH without meshes
