@@ -76,7 +76,8 @@ def sweep(scene, techniques, out, res, threads):
 
 
 def cheapest(rows, technique_family, family, limit):
-    ok = [r for r in rows if technique_family[r["technique"]] == family and float(r["rmse"]) <= limit]
+    # A refused run (a mesh technique on a scene without meshes) has no RMSE.
+    ok = [r for r in rows if technique_family[r["technique"]] == family and r["rmse"] and float(r["rmse"]) <= limit]
     return min(ok, key=lambda r: float(r["median_ms"])) if ok else None
 
 
@@ -92,10 +93,12 @@ def main():
     ap.add_argument("--techniques", default=None, help="comma-separated: only these of each scene's techniques")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "trade"))
     ap.add_argument("--data", default=os.path.join(os.path.dirname(ROOT), "shared", "data"))
+    ap.add_argument("--summarize", action="store_true",
+                    help="rebuild cheapest.md and README.md from the sweep.csv files already there, rendering nothing")
     args = ap.parse_args()
     work = tempfile.mkdtemp(prefix="weft-trade-")  # the converted aneurism and scene files
     available = scenes(args.data if os.path.isdir(args.data) else None, work)
-    command = "/usr/bin/python3 bench/trade_atlas.py " + " ".join(sys.argv[1:])
+    command = "/usr/bin/python3 bench/trade_atlas.py " + " ".join(a for a in sys.argv[1:] if a != "--summarize")
     for name in (list(available) if args.scenes == "all" else args.scenes.split(",")):
         if name not in available:
             print("trade: %s skipped (its data is not here)" % name)
@@ -105,8 +108,15 @@ def main():
             techniques = [t for t in techniques if t in args.techniques.split(",")]
         out = os.path.join(args.out, name)
         os.makedirs(out, exist_ok=True)
-        seconds, rows = sweep(scene, techniques, out, args.res, args.threads)
-        print("trade: %s: %d runs in %.0f s -> %s" % (name, len(rows), seconds, out))
+        if args.summarize:
+            if not os.path.exists(os.path.join(out, "sweep.csv")):
+                continue
+            with open(os.path.join(out, "sweep.csv")) as f:
+                rows = list(csv.DictReader(f))
+            techniques = [t for t in techniques if any(r["technique"] == t for r in rows)]
+        else:
+            seconds, rows = sweep(scene, techniques, out, args.res, args.threads)
+            print("trade: %s: %d runs in %.0f s -> %s" % (name, len(rows), seconds, out))
         families = {t: family_of(t) for t in techniques}
         keys = [k for k in rows[0].keys() if k not in ("run", "technique", "params") and not k.startswith("counters.")
                 and k not in ("median_ms", "min_ms", "max_ms", "samples", "rmse", "relmse", "psnr", "ssim", "maxabs",
