@@ -1,22 +1,27 @@
 #include "core/volume/vdb_preflight.hpp"
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include <openvdb/version.h>
 
 #include "core/base/error.hpp"
+#include "core/volume/vdb_float_tree.hpp"
+#include "core/volume/vdb_walker.hpp"
 
 namespace weft {
 
 namespace {
 
+using vdbwalk::Walker;
+
 constexpr std::int64_t kMagic = 0x56444220;  // " BDV"
-// Format 213 (the root node map) predates OpenVDB's first public release;
-// the newest is the one this OpenVDB writes.
-constexpr std::uint32_t kOldestWalked = 213, kNewestWalked = openvdb::OPENVDB_FILE_VERSION;
-constexpr std::uint32_t kMaxName = 1 << 20;  // names and type names: a megabyte is already absurd
+// Format 220 (compression flags in the file) predates OpenVDB 1.0; older
+// files store transforms this walk does not know, so their trees could not
+// be checked. The newest is the one this OpenVDB writes.
+constexpr std::uint32_t kOldestWalked = 220, kNewestWalked = openvdb::OPENVDB_FILE_VERSION;
 
 // Bytes of the linear maps' data after their type name (OpenVDB's Map::read).
 std::int64_t mapDataBytes(const std::string& type) {
@@ -26,54 +31,6 @@ std::int64_t mapDataBytes(const std::string& type) {
     if (type == "TranslationMap") return 24;
     return -1;  // a frustum or unknown map: the walk stops before the topology
 }
-
-class Walker {
-public:
-    Walker(std::istream& in, std::uint64_t size, std::string name) : in_(in), size_(size), name_(std::move(name)) {}
-
-    [[noreturn]] void corrupt(const std::string& what) const {
-        throw Error("volume '" + name_ + "': corrupt file (" + what + " at byte " + std::to_string(pos_) + ")");
-    }
-    std::uint64_t left() const { return size_ - pos_; }
-    std::uint64_t pos() const { return pos_; }
-
-    void bytes(void* out, std::uint64_t n, const char* what) {
-        if (n > left()) corrupt(std::string(what) + " runs past the end of the file");
-        in_.read(static_cast<char*>(out), std::streamsize(n));
-        if (!in_) corrupt(std::string(what) + " cannot be read");
-        pos_ += n;
-    }
-    template <typename T> T value(const char* what) {
-        T v{};
-        bytes(&v, sizeof v, what);
-        return v;
-    }
-    void skip(std::uint64_t n, const char* what) {
-        if (n > left()) corrupt(std::string(what) + " of " + std::to_string(n) + " bytes runs past the end of the file");
-        in_.seekg(std::streamoff(n), std::ios::cur);
-        pos_ += n;
-    }
-    void seek(std::int64_t at, const char* what) {
-        if (at < 0 || std::uint64_t(at) > size_) corrupt(std::string(what) + " " + std::to_string(at) + " lies outside the file");
-        in_.clear();
-        in_.seekg(at);
-        pos_ = std::uint64_t(at);
-    }
-    // OpenVDB's readString: a 32-bit length, then the characters.
-    std::string text(const char* what, std::uint32_t maxLength = kMaxName) {
-        const std::uint32_t n = value<std::uint32_t>(what);
-        if (n > maxLength || n > left())
-            corrupt(std::string(what) + " claims " + std::to_string(n) + " bytes");
-        std::string s(n, '\0');
-        bytes(s.data(), n, what);
-        return s;
-    }
-
-private:
-    std::istream& in_;
-    std::uint64_t size_, pos_ = 0;
-    std::string name_;
-};
 
 // MetaMap::readMeta: a count, then name, type name and sized value each.
 void walkMetadata(Walker& w, const char* where) {
@@ -88,32 +45,80 @@ void walkMetadata(Walker& w, const char* where) {
     }
 }
 
-struct Descriptor {
-    std::int64_t gridPos, blockPos, endPos;
-    bool instance;
-    bool standardFloatTree;  // Tree_float_5_4_3: root records of a known size
+struct FileFormat {
+    std::uint32_t version;
+    std::uint32_t compression;  // before 222 the file's, later each grid's
 };
 
-// A grid's compression flags, metadata, transform and root counts (File::readGrid's order).
-void walkGrid(Walker& w, const Descriptor& d, std::uint32_t version) {
-    w.seek(d.gridPos, "grid position");
-    if (version >= 222) w.value<std::uint32_t>("grid compression");
+struct Descriptor {
+    std::string type;
+    std::int64_t gridPos = 0, blockPos = 0, endPos = 0;  // all 0 in a file written as a stream
+    bool instance = false;
+    bool floatTree() const { return type == "Tree_float_5_4_3" || halfFloat(); }  // the layout walkFloatTree knows
+    bool halfFloat() const { return type == "Tree_float_5_4_3_HalfFloat"; }
+};
+
+// GridDescriptor::read: names, then the three positions.
+Descriptor readDescriptor(Walker& w, const FileFormat& file) {
+    Descriptor d;
+    w.text("grid name");
+    d.type = w.text("grid type");
+    d.instance = file.version >= 216 && !w.text("grid instance parent").empty();
+    d.gridPos = w.value<std::int64_t>("grid position");
+    d.blockPos = w.value<std::int64_t>("grid data position");
+    d.endPos = w.value<std::int64_t>("grid end position");
+    return d;
+}
+
+// A grid's compression flags, metadata, transform and, for a float tree,
+// every node and chunk (Archive::readGrid's order). False when the walk
+// stopped before a tree it does not know (another value type, a frustum
+// transform): readFloatGrid refuses such grids before OpenVDB reads them.
+bool walkGrid(Walker& w, const Descriptor& d, const FileFormat& file, std::optional<std::uint64_t> topologyEnd) {
+    const std::uint32_t compression = file.version >= 222 ? w.value<std::uint32_t>("grid compression") : file.compression;
     walkMetadata(w, "grid metadata");
-    const std::string map = w.text("transform type");
-    const std::int64_t mapBytes = mapDataBytes(map);
-    if (version < 219 || mapBytes < 0 || d.instance || !d.standardFloatTree) return;  // older transforms, other layouts
+    const std::int64_t mapBytes = mapDataBytes(w.text("transform type"));
+    if (mapBytes < 0) return false;
     w.skip(std::uint64_t(mapBytes), "transform data");
+    if (d.instance) return true;  // the parent's tree is walked where it lies
+    if (!d.floatTree()) return false;
     w.value<std::int32_t>("tree buffer count");
-    // RootNode::readTopology: background, tile and child counts; a tile is
-    // a coordinate, a value and a flag (17 bytes with float values), a child
-    // a coordinate and at least its two 4096-byte node masks.
-    w.value<float>("background value");
-    const std::uint32_t tiles = w.value<std::uint32_t>("root tile count");
-    const std::uint32_t children = w.value<std::uint32_t>("root child count");
-    const std::uint64_t room = d.blockPos > std::int64_t(w.pos()) ? std::uint64_t(d.blockPos) - w.pos() : 0;
-    if (std::uint64_t(tiles) * 17 + std::uint64_t(children) * (12 + 8192) > room)
-        w.corrupt(std::to_string(tiles) + " root tiles and " + std::to_string(children) + " children do not fit in the " +
-                  std::to_string(room) + " bytes of the grid's topology");
+    vdbwalk::walkFloatTree(w, {file.version, compression, d.halfFloat(), topologyEnd});
+    return true;
+}
+
+// A file with grid offsets: descriptors and grids interleaved, each grid
+// walked at the position its descriptor states.
+void walkIndexedGrids(Walker& w, const FileFormat& file, std::int32_t grids) {
+    std::vector<Descriptor> descriptors;
+    for (std::int32_t i = 0; i < grids; ++i) {
+        const Descriptor d = readDescriptor(w, file);
+        const bool ordered = d.gridPos >= 0 && d.gridPos <= d.blockPos && d.blockPos <= d.endPos;
+        if (ordered && std::uint64_t(d.endPos) > w.size())
+            throw Error("volume '" + w.name() + "': the file is cut short (grid " + std::to_string(i + 1) + " ends at byte " +
+                        std::to_string(d.endPos) + ", the file holds " + std::to_string(w.size()) + ")");
+        if (!ordered)
+            w.corrupt("grid positions " + std::to_string(d.gridPos) + ", " + std::to_string(d.blockPos) + ", " +
+                      std::to_string(d.endPos) + " of a " + std::to_string(w.size()) + "-byte file");
+        descriptors.push_back(d);
+        w.seek(d.endPos, "next grid descriptor");
+    }
+    for (const Descriptor& d : descriptors) {
+        w.seek(d.gridPos, "grid position");
+        if (walkGrid(w, d, file, std::uint64_t(d.blockPos)) && w.pos() > std::uint64_t(d.endPos))
+            w.corrupt("the grid's buffers run past its end position " + std::to_string(d.endPos));
+    }
+}
+
+// A file written as a stream has no offsets, and OpenVDB reads every grid
+// in it to find one, so every grid must be walked.
+void walkStreamedGrids(Walker& w, const FileFormat& file, std::int32_t grids) {
+    for (std::int32_t i = 0; i < grids; ++i) {
+        const Descriptor d = readDescriptor(w, file);
+        if (!walkGrid(w, d, file, std::nullopt))
+            throw Error("volume '" + w.name() + "': the file was written as a stream (no grid offsets) and holds a " + d.type +
+                        " grid, which weft cannot check before OpenVDB reads it; re-save it as a regular .vdb file");
+    }
 }
 
 void walk(std::istream& in, std::uint64_t size, const std::string& name) {
@@ -131,30 +136,13 @@ void walk(std::istream& in, std::uint64_t size, const std::string& name) {
     w.value<std::uint32_t>("library minor version");
     const bool offsets = w.value<std::uint8_t>("grid offsets flag") != 0;
     if (version >= 218) w.skip(36, "file UUID");
-    if (version >= 220 && version < 222) w.value<std::uint32_t>("file compression");
+    FileFormat file{version, 0};
+    if (version < 222) file.compression = w.value<std::uint32_t>("file compression");
     walkMetadata(w, "file metadata");
-    if (!offsets) return;
     const std::int32_t grids = w.value<std::int32_t>("grid count");
     if (grids < 0 || std::uint64_t(grids) * 32 > w.left()) w.corrupt("grid count " + std::to_string(grids));
-    std::vector<Descriptor> descriptors;
-    for (std::int32_t i = 0; i < grids; ++i) {
-        w.text("grid name");
-        const std::string type = w.text("grid type");
-        const bool instance = version >= 216 && !w.text("grid instance parent").empty();
-        Descriptor d{w.value<std::int64_t>("grid position"), w.value<std::int64_t>("grid data position"),
-                     w.value<std::int64_t>("grid end position"), instance,
-                     type == "Tree_float_5_4_3" || type == "Tree_float_5_4_3_HalfFloat"};
-        const bool ordered = d.gridPos >= 0 && d.gridPos <= d.blockPos && d.blockPos <= d.endPos;
-        if (ordered && std::uint64_t(d.endPos) > size)
-            throw Error("volume '" + name + "': the file is cut short (grid " + std::to_string(i + 1) + " ends at byte " +
-                        std::to_string(d.endPos) + ", the file holds " + std::to_string(size) + ")");
-        if (!ordered)
-            w.corrupt("grid positions " + std::to_string(d.gridPos) + ", " + std::to_string(d.blockPos) + ", " +
-                      std::to_string(d.endPos) + " of a " + std::to_string(size) + "-byte file");
-        descriptors.push_back(d);
-        w.seek(d.endPos, "next grid descriptor");
-    }
-    for (const Descriptor& d : descriptors) walkGrid(w, d, version);
+    if (offsets) walkIndexedGrids(w, file, grids);
+    else walkStreamedGrids(w, file, grids);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 // build nodes for minutes. Before OpenVDB opens a file, its header, metadata,
 // grid descriptors, each grid's metadata and transform, and its root's tile
 // and child counts are walked here and checked against the bytes the file
-// holds (the layout of OpenVDB's io::File, format versions 213 and later).
+// holds (the layout of OpenVDB's io::File, format versions 220 and later) and, for float grids, every node and value chunk of the tree (vdb_float_tree.hpp).
 #include <cstdint>
 #include <string>
 

@@ -6,6 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <fstream>
 
 #include <cstring>
 
@@ -71,16 +75,16 @@ TEST_F(VdbPreflight, NotAVdbIsLeftToOpenVdb) {
     EXPECT_EQ(verdict(""), "");
 }
 
-// The walk covers format versions 213 to the library's own; OpenVDB's
+// The walk covers format versions 220 to the library's own; OpenVDB's
 // readers of other versions trust lengths it cannot check.
 TEST_F(VdbPreflight, FormatVersionsOutsideTheWalkAreRefused) {
-    for (const std::uint32_t version : {0u, 212u, openvdb::OPENVDB_FILE_VERSION + 1, 0xffffffffu}) {
+    for (const std::uint32_t version : {0u, 219u, openvdb::OPENVDB_FILE_VERSION + 1, 0xffffffffu}) {
         std::string b = bytes;
         put32(b, 8, version);
         EXPECT_NE(verdict(b).find("file format version " + std::to_string(version) + " is not one weft reads"),
                   std::string::npos) << version;
     }
-    for (const std::uint32_t version : {213u, openvdb::OPENVDB_FILE_VERSION}) {
+    for (const std::uint32_t version : {220u, openvdb::OPENVDB_FILE_VERSION}) {
         std::string b = bytes;
         put32(b, 8, version);
         EXPECT_EQ(verdict(b).find("is not one weft reads"), std::string::npos) << version;
@@ -146,7 +150,144 @@ TEST_F(VdbPreflight, EveryCutIsEitherCleanOrNamed) {
     // A file cut anywhere: the walk never reads past the end (an Error or a pass).
     for (std::size_t n = 0; n < bytes.size(); n += 37) {
         const std::string v = verdict(bytes.substr(0, n));
-        if (!v.empty()) EXPECT_TRUE(v.find("corrupt file (") != std::string::npos || v.find("the file is cut short") != std::string::npos) << v;
+        if (!v.empty()) {
+            EXPECT_TRUE(v.find("corrupt file (") != std::string::npos || v.find("the file is cut short") != std::string::npos) << v;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace weft
+
+namespace weft {
+namespace {
+
+// ---- the walk over a float tree's nodes and chunks ---------------------------
+
+// A grid with every kind of node record: leaves with inactive voxels of one,
+// two and more values, active and inactive tiles in internal nodes and at
+// the root, and a narrow-band level set's +-background.
+std::vector<openvdb::FloatGrid::Ptr> gridsOfEveryRecord() {
+    initVdb();
+    auto fog = makeProceduralGrid("sphere", 24, 1);
+    fog->setName("density");
+    fog->tree().setValueOff(openvdb::Coord(0, 0, 0), 0.25f);             // one inactive non-background value
+    fog->tree().setValueOff(openvdb::Coord(1, 0, 0), 0.5f);              // and a second
+    fog->tree().fill(openvdb::CoordBBox({64, 64, 64}, {191, 191, 191}), 0.75f, true);  // 128^3 internal-node tiles
+    fog->tree().addTile(3, openvdb::Coord(8192, 0, 0), 0.5f, false);   // a root tile
+    auto level = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, openvdb::Vec3f(0), 0.5f, 3.0f);
+    level->setName("surface");
+    return {fog, level};
+}
+
+std::string writeWith(const std::filesystem::path& path, std::vector<openvdb::FloatGrid::Ptr> grids, std::uint32_t compression,
+                      bool half) {
+    openvdb::GridPtrVec all;
+    for (auto& g : grids) {
+        g->setSaveFloatAsHalf(half);
+        all.push_back(g);
+    }
+    openvdb::io::File file(path.string());
+    file.setCompression(compression);
+    file.write(all);
+    file.close();
+    return test::readBytes(path);
+}
+
+TEST_F(VdbPreflight, FloatTreesOfEveryCompressionPassAndRead) {
+    const auto grids = gridsOfEveryRecord();
+    const std::uint32_t mask = openvdb::io::COMPRESS_ACTIVE_MASK, blosc = openvdb::io::COMPRESS_BLOSC,
+                        zip = openvdb::io::COMPRESS_ZIP;
+    for (const std::uint32_t compression : {0u, mask, zip, zip | mask, blosc, blosc | mask})
+        for (const bool half : {false, true}) {
+            SCOPED_TRACE(std::to_string(compression) + (half ? " half" : ""));
+            const auto path = dir / ("c" + std::to_string(compression) + (half ? "h" : "") + ".vdb");
+            EXPECT_EQ(verdict(writeWith(path, grids, compression, half)), "");
+            const auto read = readFloatGrid(path.string(), "density");
+            EXPECT_EQ(read->activeVoxelCount(), grids[0]->activeVoxelCount());
+            EXPECT_EQ(readFloatGrid(path.string(), "surface")->activeVoxelCount(), grids[1]->activeVoxelCount());
+        }
+}
+
+// One leaf of incompressible values, so zip stores its chunk as is.
+openvdb::FloatGrid::Ptr leafOfNoise() {
+    initVdb();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    std::uint32_t state = 12345;
+    for (int i = 0; i < 512; ++i) {
+        state = state * 1664525u + 1013904223u;
+        float value;  // random bits: NaNs too, which a file stores like any value
+        std::memcpy(&value, &state, 4);
+        grid->tree().setValue(openvdb::Coord(i & 7, (i >> 3) & 7, i >> 6), value);
+    }
+    grid->setName("density");
+    return grid;
+}
+
+TEST_F(VdbPreflight, UncompressedZipChunkOfAnotherSizeIsRefused) {
+    std::string b = writeWith(dir / "zip.vdb", {leafOfNoise()}, openvdb::io::COMPRESS_ZIP, false);
+    const std::int64_t stored = -2048, stated = -4096;  // the leaf's 512 floats
+    const std::size_t at = b.rfind(std::string(reinterpret_cast<const char*>(&stored), 8));
+    ASSERT_NE(at, std::string::npos);
+    std::memcpy(&b[at], &stated, 8);
+    const std::string v = verdict(b);
+    EXPECT_NE(v.find("uncompressed zip chunk of 4096 bytes where the node's values take 2048 at byte"), std::string::npos) << v;
+}
+
+TEST_F(VdbPreflight, BloscHeaderOfAnotherSizeIsRefused) {
+    std::string b = writeWith(dir / "blosc.vdb", {leafOfNoise()}, openvdb::io::COMPRESS_BLOSC, false);
+    // The leaf's chunk: its size, then blosc's header stating 2048 bytes decompressed and the size again.
+    std::size_t header = std::string::npos;
+    for (std::size_t i = 0; i + 24 <= b.size() && header == std::string::npos; ++i) {
+        std::int64_t n;
+        std::uint32_t decompressed, compressed;
+        std::memcpy(&n, &b[i], 8);
+        std::memcpy(&decompressed, &b[i + 12], 4);
+        std::memcpy(&compressed, &b[i + 20], 4);
+        if (n > 16 && decompressed == 2048 && compressed == std::uint64_t(n)) header = i + 8;
+    }
+    ASSERT_NE(header, std::string::npos);
+    std::string wider = b;
+    put32(wider, header + 4, 4096);
+    const std::string v = verdict(wider);
+    EXPECT_NE(v.find("compressed and 4096 decompressed where the node's values take 2048"), std::string::npos) << v;
+    put32(b, header + 12, 1u << 30);  // more compressed bytes than the chunk holds
+    EXPECT_NE(verdict(b).find("compressed and 2048 decompressed"), std::string::npos) << verdict(b);
+}
+
+// Written as a stream, a file has no grid offsets and OpenVDB reads all of
+// its grids to find one: float grids are walked, others refused.
+TEST_F(VdbPreflight, StreamedFilesAreWalkedGridByGrid) {
+    const auto write = [&](const openvdb::GridPtrVec& grids) {
+        {
+            std::ofstream out((dir / "stream.vdb").string(), std::ios::binary);
+            openvdb::io::Stream(out).write(grids);
+        }
+        return test::readBytes(dir / "stream.vdb");
+    };
+    const auto grids = gridsOfEveryRecord();
+    EXPECT_EQ(verdict(write({grids[0], grids[1]})), "");
+    EXPECT_EQ(readFloatGrid((dir / "stream.vdb").string(), "surface")->activeVoxelCount(), grids[1]->activeVoxelCount());
+    auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0));
+    velocity->setName("vel");
+    const std::string v = verdict(write({grids[0], velocity}));
+    EXPECT_NE(v.find("written as a stream (no grid offsets) and holds a Tree_vec3s_5_4_3 grid"), std::string::npos) << v;
+}
+
+// Only float grids are handed to OpenVDB's tree reader.
+TEST_F(VdbPreflight, AGridOfAnotherTypeIsRefusedBeforeItsTreeIsRead) {
+    initVdb();
+    auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0));
+    velocity->setName("density");
+    velocity->tree().setValue(openvdb::Coord(1, 2, 3), openvdb::Vec3s(1, 0, 0));
+    openvdb::io::File file((dir / "vel.vdb").string());
+    file.write({velocity});
+    file.close();
+    try {
+        readFloatGrid((dir / "vel.vdb").string(), "density");
+        ADD_FAILURE() << "a vec3s grid was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("holds vec3s values; weft renders float grids"), std::string::npos) << e.what();
     }
 }
 

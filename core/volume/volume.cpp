@@ -77,6 +77,17 @@ openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string
     if (!gridName.empty()) chosen = gridName;
     if (chosen.empty() || !file.hasGrid(chosen))
         throw Error("volume '" + path + "': no grid named '" + chosen + "' (grids: " + (names.empty() ? "none" : names) + ")");
+    // The type and transform come first: the preflight walks only float
+    // trees of linear transforms, so no other tree is handed to OpenVDB.
+    openvdb::GridBase::Ptr header;
+    try {
+        header = file.readGridMetadata(chosen);
+    } catch (const std::exception&) {
+        throw Error("volume '" + path + "': grid '" + chosen + "' cannot be read: the file is corrupt or cut short");
+    }
+    if (!openvdb::gridPtrCast<openvdb::FloatGrid>(header))
+        throw Error("volume '" + path + "': grid '" + chosen + "' holds " + header->valueType() + " values; weft renders float grids");
+    if (!header->transform().isLinear()) throw Error("volume '" + path + "': grid '" + chosen + "' has a non-linear (frustum) transform, which weft does not support");
     openvdb::GridBase::Ptr base;
     try {
         base = file.readGrid(chosen);
@@ -86,8 +97,7 @@ openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string
         throw Error("volume '" + path + "': grid '" + chosen + "' cannot be read: the file is corrupt or cut short");
     }
     auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    if (!grid) throw Error("volume '" + path + "': grid '" + chosen + "' holds " + base->valueType() + " values; weft renders float grids");
-    if (!grid->transform().isLinear()) throw Error("volume '" + path + "': grid '" + chosen + "' has a non-linear (frustum) transform, which weft does not support");
+    if (!grid) throw Error("volume '" + path + "': grid '" + chosen + "' cannot be read: the file is corrupt");
     return grid;
 }
 

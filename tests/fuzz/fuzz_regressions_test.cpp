@@ -280,7 +280,17 @@ TEST(FuzzRegressions, PlyElementNameThatIsNoWordIsRefusedBeforeAssimp) {
 // normal build's operator new throws std::bad_alloc, which the loader turns
 // into one line; sanitized builds get the same (cmake/sanitize_bounded_new.cpp).
 TEST(FuzzRegressions, VdbBloscSizeOfEightExabytesIsRefused) {
-    expectFindingRefused(vdbFile, "vdb", "blosc-claims-8-exabytes.vdb", "volume.vdb");
+    expectFindingRefused(vdbFile, "vdb", "blosc-claims-8-exabytes.vdb", "blosc chunk of 7957695011165139568 bytes runs past the end");
+}
+
+// A 16^3 node's values stated an uncompressed blosc chunk of
+// 648518346341351408 bytes where its mask left none: OpenVDB 10's
+// bloscFromStream copies the stated bytes before comparing, and wrote the
+// rest of the file (4317 bytes) into an empty buffer (ASan:
+// heap-buffer-overflow). The preflight now walks every chunk of a float tree.
+TEST(FuzzRegressions, VdbUncompressedBloscChunkLongerThanItsNodeIsRefused) {
+    expectFindingRefused(vdbFile, "vdb", "uncompressed-blosc-chunk-overflows-its-buffer.vdb",
+                         "uncompressed blosc chunk of ");
 }
 
 // A 40 KB file of format version 0: OpenVDB's reader of the pre-release

@@ -1,0 +1,169 @@
+#include "core/volume/vdb_float_tree.hpp"
+
+#include <array>
+#include <bit>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace weft::vdbwalk {
+
+namespace {
+
+constexpr std::uint32_t kZip = 0x1, kActiveMask = 0x2, kBlosc = 0x4;  // io::COMPRESS_*
+constexpr std::uint32_t kInternalNodeCompression = 214, kNodeMaskCompression = 222;
+// io::readCompressedValues' per-node flag: what precedes the values.
+constexpr std::int8_t kNoMaskOneInactive = 2, kMaskNoInactive = 3, kMaskOneInactive = 4, kMaskTwoInactive = 5,
+                      kAllValues = 6;
+
+using Words = std::vector<std::uint64_t>;
+using LeafMask = std::array<std::uint64_t, 8>;  // 8^3 voxels
+
+std::uint64_t countOn(const std::uint64_t* words, std::size_t n) {
+    std::uint64_t on = 0;
+    for (std::size_t i = 0; i < n; ++i) on += std::uint64_t(std::popcount(words[i]));
+    return on;
+}
+
+std::uint32_t littleEndian32(const unsigned char* p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+
+class FloatTreeWalk {
+public:
+    FloatTreeWalk(Walker& w, const FloatTreeFormat& f) : w_(w), f_(f) {}
+
+    void run() {
+        w_.value<float>("background value");
+        const std::uint32_t tiles = w_.value<std::uint32_t>("root tile count");
+        const std::uint32_t children = w_.value<std::uint32_t>("root child count");
+        // A tile is a coordinate, a value and a flag (17 bytes), a child a
+        // coordinate and at least its two 4096-byte node masks.
+        const std::uint64_t end = f_.topologyEnd.value_or(w_.size());
+        const std::uint64_t room = end > w_.pos() ? end - w_.pos() : 0;
+        if (std::uint64_t(tiles) * 17 + std::uint64_t(children) * (12 + 8192) > room)
+            w_.corrupt(std::to_string(tiles) + " root tiles and " + std::to_string(children) +
+                       " children do not fit in the " + std::to_string(room) + " bytes of the grid's topology");
+        // RootNode keeps its table in a map: a later entry at the same
+        // coordinate replaces an earlier one, and the buffers follow the map's order.
+        std::map<std::array<std::int32_t, 3>, std::size_t> table;
+        std::vector<std::pair<std::size_t, std::size_t>> leavesOf{{0, 0}};  // entry 0: a tile
+        for (std::uint32_t i = 0; i < tiles; ++i) {
+            const auto origin = coordinate("root tile origin");
+            w_.skip(5, "root tile value");
+            table[origin] = 0;
+        }
+        for (std::uint32_t i = 0; i < children; ++i) {
+            const auto origin = coordinate("root child origin");
+            const std::size_t first = leafMasks_.size();
+            internalNode(5, f_.half);
+            table[origin] = leavesOf.size();
+            leavesOf.emplace_back(first, leafMasks_.size());
+        }
+        if (f_.topologyEnd && w_.pos() != *f_.topologyEnd)
+            w_.corrupt("the topology ends at byte " + std::to_string(w_.pos()) + ", not where the grid's buffers begin (" +
+                       std::to_string(*f_.topologyEnd) + ")");
+        for (const auto& [origin, entry] : table)
+            for (std::size_t leaf = leavesOf[entry].first; leaf < leavesOf[entry].second; ++leaf) leafBuffer(leaf);
+    }
+
+private:
+    std::array<std::int32_t, 3> coordinate(const char* what) {
+        std::array<std::int32_t, 3> c{};
+        w_.bytes(c.data(), sizeof c, what);
+        return c;
+    }
+
+    // One io::readData: blosc or zip chunks state their size first; a
+    // size <= 0 means that many uncompressed bytes follow.
+    void chunk(std::uint64_t bytes, std::uint32_t compression) {
+        if (!(compression & (kBlosc | kZip))) return w_.skip(bytes, "node values");
+        const char* kind = (compression & kBlosc) ? "blosc" : "zip";
+        const std::int64_t stated = w_.value<std::int64_t>("chunk size");
+        if (stated <= 0) {
+            const std::uint64_t raw = std::uint64_t(0) - std::uint64_t(stated);
+            if (raw != bytes)
+                w_.corrupt(std::string("uncompressed ") + kind + " chunk of " + std::to_string(raw) + " bytes where the node's values take " +
+                           std::to_string(bytes));
+            return w_.skip(raw, "uncompressed chunk");
+        }
+        if (std::uint64_t(stated) > w_.left())
+            w_.corrupt(std::string(kind) + " chunk of " + std::to_string(stated) + " bytes runs past the end of the file");
+        if (compression & kBlosc) {
+            // blosc's 16-byte header: the decompressed size at byte 4, the compressed size at byte 12.
+            unsigned char header[16];
+            if (stated < 16) w_.corrupt("blosc chunk of " + std::to_string(stated) + " bytes, shorter than its header");
+            w_.bytes(header, sizeof header, "blosc chunk header");
+            const std::uint32_t decompressed = littleEndian32(header + 4), compressed = littleEndian32(header + 12);
+            if (decompressed != bytes || compressed != std::uint64_t(stated))
+                w_.corrupt("blosc chunk of " + std::to_string(stated) + " bytes whose header states " + std::to_string(compressed) +
+                           " compressed and " + std::to_string(decompressed) + " decompressed where the node's values take " +
+                           std::to_string(bytes));
+            return w_.skip(std::uint64_t(stated) - sizeof header, "blosc chunk");
+        }
+        w_.skip(std::uint64_t(stated), "zip chunk");
+    }
+
+    // io::readCompressedValues of `count` values of a node whose value mask is `mask`.
+    void values(std::uint64_t count, const std::uint64_t* mask, std::size_t words, bool half) {
+        std::int8_t flag = kAllValues;
+        if (f_.version >= kNodeMaskCompression) flag = w_.value<std::int8_t>("node compression flag");
+        if (flag == kNoMaskOneInactive || flag == kMaskOneInactive || flag == kMaskTwoInactive) w_.skip(4, "inactive value");
+        if (flag == kMaskTwoInactive) w_.skip(4, "second inactive value");
+        if (flag == kMaskNoInactive || flag == kMaskOneInactive || flag == kMaskTwoInactive) w_.skip(words * 8, "selection mask");
+        if ((f_.compression & kActiveMask) && flag != kAllValues && f_.version >= kNodeMaskCompression)
+            count = countOn(mask, words);
+        if (half && count == 0) return;  // HalfReader reads nothing then
+        chunk(count * (half ? 2 : 4), f_.compression);
+    }
+
+    // InternalNode::readTopology of a node of 2^(3 log2Dim) entries; its
+    // children are 16^3 nodes, theirs leaves.
+    void internalNode(int log2Dim, bool half) {
+        const std::size_t entries = std::size_t(1) << (3 * log2Dim), words = entries / 64;
+        Words childMask(words), valueMask(words);
+        w_.bytes(childMask.data(), entries / 8, "internal node child mask");
+        w_.bytes(valueMask.data(), entries / 8, "internal node value mask");
+        const auto child = [&](bool childHalf) {
+            if (log2Dim == 5) return internalNode(4, childHalf);
+            LeafMask m;
+            w_.bytes(m.data(), sizeof m, "leaf value mask");
+            leafMasks_.push_back(m);
+        };
+        if (f_.version < kInternalNodeCompression) {  // values stored between the children
+            for (std::size_t i = 0; i < entries; ++i)
+                if (childMask[i / 64] >> (i % 64) & 1) child(false);  // read without fromHalf then
+                else w_.skip(4, "internal node value");
+            return;
+        }
+        const std::uint64_t count = f_.version < kNodeMaskCompression ? entries - countOn(childMask.data(), words) : entries;
+        values(count, valueMask.data(), words, half);
+        for (std::size_t i = 0; i < words; ++i)
+            for (std::uint64_t bits = childMask[i]; bits; bits &= bits - 1) child(half);
+    }
+
+    // LeafNode::readBuffers: the value mask again, then the voxel values.
+    void leafBuffer(std::size_t leaf) {
+        LeafMask m;
+        w_.bytes(m.data(), sizeof m, "leaf buffer value mask");
+        // OpenVDB takes the mask from either copy; valid files hold the same twice.
+        if (m != leafMasks_[leaf]) w_.corrupt("a leaf's value mask in its buffer differs from the one in the topology");
+        int buffers = 1;
+        if (f_.version < kNodeMaskCompression) {
+            w_.skip(12, "leaf origin");
+            buffers = w_.value<std::int8_t>("leaf buffer count");
+        }
+        values(512, m.data(), m.size(), f_.half);
+        for (int i = 1; i < buffers; ++i) chunk(512 * (f_.half ? 2 : 4), f_.compression & kZip);  // older auxiliary buffers
+    }
+
+    Walker& w_;
+    FloatTreeFormat f_;
+    std::vector<LeafMask> leafMasks_;
+};
+
+}  // namespace
+
+void walkFloatTree(Walker& w, const FloatTreeFormat& format) { FloatTreeWalk(w, format).run(); }
+
+}  // namespace weft::vdbwalk
