@@ -25,10 +25,6 @@ std::uint64_t countOn(const std::uint64_t* words, std::size_t n) {
     return on;
 }
 
-std::uint32_t littleEndian32(const unsigned char* p) {
-    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
-}
-
 class FloatTreeWalk {
 public:
     FloatTreeWalk(Walker& w, const FloatTreeFormat& f) : w_(w), f_(f) {}
@@ -50,7 +46,10 @@ public:
         std::vector<std::pair<std::size_t, std::size_t>> leavesOf{{0, 0}};  // entry 0: a tile
         for (std::uint32_t i = 0; i < tiles; ++i) {
             const auto origin = coordinate("root tile origin");
-            w_.skip(5, "root tile value");
+            w_.skip(4, "root tile value");
+            // Read into a bool: any byte but 0 or 1 is undefined behaviour.
+            if (const auto active = w_.value<std::uint8_t>("root tile flag"); active > 1)
+                w_.corrupt("root tile flag " + std::to_string(active) + " (not 0 or 1)");
             table[origin] = 0;
         }
         for (std::uint32_t i = 0; i < children; ++i) {
@@ -87,20 +86,7 @@ private:
                            std::to_string(bytes));
             return w_.skip(raw, "uncompressed chunk");
         }
-        if (std::uint64_t(stated) > w_.left())
-            w_.corrupt(std::string(kind) + " chunk of " + std::to_string(stated) + " bytes runs past the end of the file");
-        if (compression & kBlosc) {
-            // blosc's 16-byte header: the decompressed size at byte 4, the compressed size at byte 12.
-            unsigned char header[16];
-            if (stated < 16) w_.corrupt("blosc chunk of " + std::to_string(stated) + " bytes, shorter than its header");
-            w_.bytes(header, sizeof header, "blosc chunk header");
-            const std::uint32_t decompressed = littleEndian32(header + 4), compressed = littleEndian32(header + 12);
-            if (decompressed != bytes || compressed != std::uint64_t(stated))
-                w_.corrupt("blosc chunk of " + std::to_string(stated) + " bytes whose header states " + std::to_string(compressed) +
-                           " compressed and " + std::to_string(decompressed) + " decompressed where the node's values take " +
-                           std::to_string(bytes));
-            return w_.skip(std::uint64_t(stated) - sizeof header, "blosc chunk");
-        }
+        if (compression & kBlosc) return w_.bloscBuffer(std::uint64_t(stated), bytes, "blosc chunk");
         w_.skip(std::uint64_t(stated), "zip chunk");
     }
 

@@ -1,15 +1,18 @@
 #include "core/volume/vdb_preflight.hpp"
 
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <vector>
 
+#include <openvdb/Metadata.h>
 #include <openvdb/version.h>
 
 #include "core/base/error.hpp"
 #include "core/volume/vdb_float_tree.hpp"
 #include "core/volume/vdb_walker.hpp"
+#include "core/volume/volume.hpp"
 
 namespace weft {
 
@@ -32,6 +35,46 @@ std::int64_t mapDataBytes(const std::string& type) {
     return -1;  // a frustum or unknown map: the walk stops before the topology
 }
 
+// DelayedLoadMetadata::readValue (type "__delayedload", in most files):
+// a count, then per leaf a mask byte and an 8-byte compressed size, each
+// array blosc-compressed (a size > 0) or raw (0); sizes of UINT32_MAX mean
+// no compressed sizes. What is left of its stated size is skipped.
+void walkDelayedLoad(Walker& w, std::uint32_t stated) {
+    if (stated == 0) return;
+    const std::uint64_t start = w.pos();
+    const std::uint32_t count = w.value<std::uint32_t>("delayed-load count");
+    const auto array = [&](std::uint64_t itemBytes, bool optional) {
+        const std::uint32_t bytes = w.value<std::uint32_t>("delayed-load array size");
+        if (optional && bytes == std::numeric_limits<std::uint32_t>::max()) return;
+        if (bytes > 0) w.bloscBuffer(bytes, count * itemBytes, "delayed-load array", /*padded=*/true);
+        else w.skip(count * itemBytes, "delayed-load array");
+    };
+    array(1, false);
+    array(8, true);
+    const std::uint64_t used = w.pos() - start;
+    if (used > stated)
+        w.corrupt("delayed-load metadata of " + std::to_string(used) + " bytes where its size states " + std::to_string(stated));
+    w.skip(stated - used, "delayed-load metadata");
+}
+
+// One metadata value. A registered type of fixed size (bool, int32, vec3d,
+// mat4d...) is read at its own size whatever size the file states, so the
+// two must agree or OpenVDB's reading and this walk part ways.
+void walkMetaValue(Walker& w, const std::string& type, std::uint32_t stated) {
+    if (type == "__delayedload") return walkDelayedLoad(w, stated);
+    if (type != "string" && openvdb::Metadata::isRegisteredType(type)) {
+        const std::uint32_t size = openvdb::Metadata::createMetadata(type)->size();
+        if (stated != size)
+            w.corrupt(type + " metadata stating " + std::to_string(stated) + " bytes where OpenVDB reads " + std::to_string(size));
+        if (type == "bool") {  // read into a bool: any byte but 0 or 1 is undefined behaviour
+            if (const auto b = w.value<std::uint8_t>("bool metadata"); b > 1)
+                w.corrupt("bool metadata " + std::to_string(b) + " (not 0 or 1)");
+            return;
+        }
+    }
+    w.skip(stated, "metadata value");
+}
+
 // MetaMap::readMeta: a count, then name, type name and sized value each.
 void walkMetadata(Walker& w, const char* where) {
     const std::int32_t count = w.value<std::int32_t>(where);
@@ -39,9 +82,8 @@ void walkMetadata(Walker& w, const char* where) {
     if (count < 0 || std::uint64_t(count) * 12 > w.left()) w.corrupt(std::string(where) + " count " + std::to_string(count));
     for (std::int32_t i = 0; i < count; ++i) {
         w.text("metadata name");
-        w.text("metadata type name");
-        const std::uint32_t n = w.value<std::uint32_t>("metadata value size");
-        w.skip(n, "metadata value");
+        const std::string type = w.text("metadata type name");
+        walkMetaValue(w, type, w.value<std::uint32_t>("metadata value size"));
     }
 }
 
@@ -122,6 +164,7 @@ void walkStreamedGrids(Walker& w, const FileFormat& file, std::int32_t grids) {
 }
 
 void walk(std::istream& in, std::uint64_t size, const std::string& name) {
+    initVdb();  // the registered metadata types
     Walker w(in, size, name);
     if (size < 8 || w.value<std::int64_t>("magic number") != kMagic) return;  // not a VDB: OpenVDB says so
     const std::uint32_t version = w.value<std::uint32_t>("file version");

@@ -146,6 +146,30 @@ TEST_F(VdbPreflight, GridPositionsOutsideTheFile) {
     EXPECT_NE(v.find("grid positions -5, "), std::string::npos) << v;
 }
 
+// OpenVDB reads a fixed-size value at its own size whatever size the file
+// states; a bool must be 0 or 1.
+TEST_F(VdbPreflight, FixedSizeMetadataMustHaveItsSizeAndBoolsBeBools) {
+    initVdb();
+    auto grid = makeProceduralGrid("sphere", 16, 1);
+    grid->setName("density");
+    grid->insertMeta("frame", openvdb::Int32Metadata(7));
+    grid->insertMeta("cached", openvdb::BoolMetadata(true));
+    openvdb::io::File file((dir / "meta.vdb").string());
+    file.write({grid});
+    file.close();
+    const std::string b = test::readBytes(dir / "meta.vdb");
+    ASSERT_EQ(verdict(b), "");
+    // name "frame", type "int32", then the size 4 and the value.
+    const std::size_t frame = b.find("int32", b.find("frame")) + 5;
+    std::string wider = b;
+    put32(wider, frame, 8);
+    EXPECT_NE(verdict(wider).find("int32 metadata stating 8 bytes where OpenVDB reads 4"), std::string::npos) << verdict(wider);
+    const std::size_t cached = b.find("bool", b.find("cached")) + 4;
+    std::string two = b;
+    two[cached + 4] = 2;
+    EXPECT_NE(verdict(two).find("bool metadata 2 (not 0 or 1)"), std::string::npos) << verdict(two);
+}
+
 TEST_F(VdbPreflight, EveryCutIsEitherCleanOrNamed) {
     // A file cut anywhere: the walk never reads past the end (an Error or a pass).
     for (std::size_t n = 0; n < bytes.size(); n += 37) {
@@ -250,7 +274,7 @@ TEST_F(VdbPreflight, BloscHeaderOfAnotherSizeIsRefused) {
     std::string wider = b;
     put32(wider, header + 4, 4096);
     const std::string v = verdict(wider);
-    EXPECT_NE(v.find("compressed and 4096 decompressed where the node's values take 2048"), std::string::npos) << v;
+    EXPECT_NE(v.find("compressed and 4096 decompressed where 2048 are expected"), std::string::npos) << v;
     put32(b, header + 12, 1u << 30);  // more compressed bytes than the chunk holds
     EXPECT_NE(verdict(b).find("compressed and 2048 decompressed"), std::string::npos) << verdict(b);
 }

@@ -46,6 +46,28 @@ public:
         in_.seekg(at);
         pos_ = std::uint64_t(at);
     }
+    // A blosc buffer of `stated` bytes that must decompress to `expected`:
+    // its 16-byte header states both sizes (at bytes 12 and 4), and blosc
+    // trusts them, reading and writing as far as they say. OpenVDB's
+    // compression::bloscCompress pads buffers under 128 bytes to 128
+    // (`padded`: that size is accepted too).
+    void bloscBuffer(std::uint64_t stated, std::uint64_t expected, const char* what, bool padded = false) {
+        if (stated > left()) corrupt(std::string(what) + " of " + std::to_string(stated) + " bytes runs past the end of the file");
+        if (stated < 16) corrupt(std::string(what) + " of " + std::to_string(stated) + " bytes, shorter than blosc's header");
+        unsigned char header[16];
+        bytes(header, sizeof header, what);
+        const auto le32 = [&](int at) {
+            return std::uint32_t(header[at]) | std::uint32_t(header[at + 1]) << 8 | std::uint32_t(header[at + 2]) << 16 |
+                   std::uint32_t(header[at + 3]) << 24;
+        };
+        const std::uint32_t decompressed = le32(4), compressed = le32(12);
+        const bool sized = decompressed == expected || (padded && expected < 128 && decompressed == 128);
+        if (!sized || compressed != stated)
+            corrupt(std::string(what) + " of " + std::to_string(stated) + " bytes whose header states " + std::to_string(compressed) +
+                    " compressed and " + std::to_string(decompressed) + " decompressed where " + std::to_string(expected) +
+                    " are expected");
+        skip(stated - sizeof header, what);
+    }
     // OpenVDB's readString: a 32-bit length, then the characters.
     std::string text(const char* what, std::uint32_t maxLength = kMaxName) {
         const std::uint32_t n = value<std::uint32_t>(what);

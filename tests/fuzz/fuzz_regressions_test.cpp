@@ -293,6 +293,12 @@ TEST(FuzzRegressions, VdbUncompressedBloscChunkLongerThanItsNodeIsRefused) {
                          "uncompressed blosc chunk of ");
 }
 
+// A root tile whose active flag was the byte 2: OpenVDB reads it into a
+// bool (UBSan: load of value 2, which is not a valid value for type 'bool').
+TEST(FuzzRegressions, VdbRootTileFlagThatIsNoBoolIsRefused) {
+    expectFindingRefused(vdbFile, "vdb", "root-tile-flag-2-is-no-bool.vdb", "root tile flag 2 (not 0 or 1)");
+}
+
 // A 40 KB file of format version 0: OpenVDB's reader of the pre-release
 // layouts, which the preflight did not walk, peaked at 1.7 GB before it
 // gave up. Such versions are now refused before OpenVDB opens the file.
