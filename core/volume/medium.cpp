@@ -86,6 +86,8 @@ MediumRay::MediumRay(const Medium& medium) : medium_(medium) {
         accessors_.push_back(e.volume->grid->getConstAccessor());
         brickAccessors_.push_back(e.bricks->getConstAccessor());
     }
+    for (std::size_t i = 0; i < accessors_.size(); ++i)  // after the last push_back: they point into accessors_
+        samplers_.emplace_back(accessors_[i], medium.volumes_[i].volume->grid->transform());
 }
 
 // Amanatides-Woo in brick coordinates, parametrised by world distance.
@@ -156,7 +158,7 @@ MediumCoefficients MediumRay::at(double t) {
         if (t < s.t0 || t >= s.t1) continue;
         const Medium::Entry& e = medium_.volumes_[s.volume];
         const Vec3d ijk = s.indexOrigin + s.indexStep * t;
-        const double rho = usableDensity(openvdb::tools::BoxSampler::sample(accessors_[s.volume], ijk));
+        const double rho = usableDensity(samplers_[s.volume].isSample(ijk));
         ++lookups;
         const Vec3d scatter = e.scatter * rho;
         c.extinction += e.absorb * rho + scatter;

@@ -21,6 +21,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "core/volume/leaf_sampler.hpp"
 #include "core/volume/volume_bvh.hpp"
 #include "core/base/rng.hpp"
 #include "core/volume/volume.hpp"
@@ -85,6 +86,7 @@ private:
     void nextBrick(MediumSegment& s);
 
     std::vector<openvdb::FloatGrid::ConstAccessor> accessors_, brickAccessors_;
+    std::vector<LeafSampler> samplers_;  // through accessors_ (a move keeps their addresses)
     void addSegment(std::uint32_t volume, const Vec3d& origin, const Vec3d& dir, double tMax);
 
     std::vector<MediumSegment> segments_;

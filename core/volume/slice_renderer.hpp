@@ -2,7 +2,7 @@
 // What the slice-based volume techniques (volume.preint, volume.adaptive3d)
 // share: their common parameters, the scene checks, and sampling the data
 // at a point of a slice as a normalised scalar.
-#include <openvdb/tools/Interpolation.h>
+#include "core/volume/leaf_sampler.hpp"
 
 #include <vector>
 
@@ -42,7 +42,7 @@ private:
     using Accessor = openvdb::FloatGrid::ConstAccessor;
     const Volume& volume_;
     Accessor accessor_;
-    openvdb::tools::GridSampler<Accessor, openvdb::tools::BoxSampler> sampler_;
+    mutable LeafSampler sampler_;  // keeps the last leaf: one per thread
     float background_;
 };
 

@@ -24,13 +24,14 @@
 #include <optional>
 #include <vector>
 
+#include "core/volume/leaf_sampler.hpp"
 #include "core/volume/volume_bvh.hpp"
 #include "core/scene/scene.hpp"
 #include "core/volume/volume_ray.hpp"
 
 namespace weft {
 
-using VolumeSampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
+using VolumeSampler = LeafSampler;
 using VolumeIntersector = openvdb::tools::VolumeRayIntersector<openvdb::FloatGrid, 0>;
 
 struct MarchSettings {

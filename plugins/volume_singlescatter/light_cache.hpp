@@ -17,7 +17,7 @@
 // uniform grids are its index units exactly. Meshes on the way to the light
 // go into a visibility grid on the receiver's cache voxels (1 lit, 0 blocked).
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
+#include "core/volume/leaf_sampler.hpp"
 
 #include "core/mesh/mesh_accel.hpp"
 #include "core/volume/volume.hpp"
@@ -53,7 +53,7 @@ public:
     float densityPathFromWorld(const Vec3d& p) { return densityPath(occluder_.grid->transform().worldToIndex(p)); }
 
 private:
-    using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
+    using Sampler = LeafSampler;
     double exitDistance(const Vec3d& x, const Vec3d& dir) const;
     double entryDistance(const Vec3d& x, const Vec3d& dir) const;
     double voxelLengthsPerIndexUnit(const Vec3d& dir) const;

@@ -8,6 +8,7 @@
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/emitters.hpp"
 #include "core/lighting/surface_shading.hpp"
+#include "core/volume/leaf_sampler.hpp"
 #include "core/volume/medium.hpp"
 #include "core/volume/transmittance.hpp"
 #include "core/volume/volume_ray.hpp"
@@ -18,7 +19,7 @@ namespace {
 
 const Counter kLightCacheVoxels{"light_cache.voxels", "active voxels of the light caches built"};
 
-using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
+using Sampler = LeafSampler;
 
 // NaN or Inf voxels (a broken simulation) read as empty, never as NaN light.
 double finiteDensity(double rho) { return std::isfinite(rho) ? rho : 0.0; }
