@@ -25,7 +25,9 @@
 //   ert         early ray termination once opacity reaches this (1 = off)
 //   skip_empty  skip regions without active voxels (OpenVDB HDDA on each
 //               grid's index space, so any affine transform works); the
-//               image is unchanged, only fewer samples are taken
+//               image is unchanged, only fewer samples are taken. auto (the
+//               default) skips where it pays and changes nothing
+//               (emptySpacePays, volume_march.hpp)
 //   offset_pattern  per-pixel offsets of the first sample from a pattern set's
 //               third coordinate: interleaved:4x4 gives the 16 pixels of each
 //               tile 16 different strata of the step (Keller & Heidrich 4.3)
@@ -62,7 +64,9 @@ std::vector<ParamSpec> raymarchParams() {
         floatParam("step", 0.5, 1e-4, 64, "distance between samples along a ray, in voxel lengths of the finest volume it crosses"),
         boolParam("jitter", false, "random per-ray offset of the first sample (trades banding for noise)"),
         floatParam("ert", 0.99, 0, 1, "early ray termination once opacity reaches this (1 = never)"),
-        boolParam("skip_empty", false, "skip regions without active voxels (OpenVDB HDDA); same image, fewer samples"),
+        enumParam("skip_empty", "auto", {"auto", "true", "false"},
+                  "skip regions without active voxels (OpenVDB HDDA); same image, fewer samples. auto: where the grids are "
+                  "sparse (leaves fill at most 3/4 of their active box) and every value skipped is transparent"),
         stringParam("offset_pattern", "", "offset of the first sample per pixel from a pattern set's third coordinate, "
                                           "e.g. interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: jitter or centre",
                     [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }),
@@ -78,7 +82,7 @@ struct RaymarchCounts {
 class Raymarch final : public Technique {
 public:
     Raymarch(const Scene& scene, const ParamSet& p)
-        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), p.getBool("skip_empty"),
+        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), p.getString("skip_empty") == "true",
                   p.getString("offset_pattern")},
           plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         if (params_.jitter && !params_.offsetPattern.empty())
@@ -88,6 +92,7 @@ public:
                 throw Error("volume.raymarch: skip_empty=true needs a transfer function that is transparent at the grid's background value "
                             "(volume '" + vol.source + "')");
         requireSurfaceLights(scene, "volume.raymarch");
+        if (p.getString("skip_empty") == "auto") params_.skipEmpty = emptySpacePays(scene.volumes);
         if (params_.skipEmpty && !scene.volumes.empty()) skipper_.emplace(scene.volumes);
     }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "core/base/error.hpp"
+#include "core/volume/volume.hpp"
+#include "plugins/volume_raymarch/volume_march.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -40,7 +42,7 @@ TEST(Raymarch, CountsCameraRaysAndSamples) {
 }
 
 TEST(Raymarch, SkipEmptyGivesTheSameImageWithFewerSamples) {
-    const RenderOutcome full = render("builtin:cloud", "48x48", {"step=0.5"});
+    const RenderOutcome full = render("builtin:cloud", "48x48", {"step=0.5", "skip_empty=false"});
     const RenderOutcome skip = render("builtin:cloud", "48x48", {"step=0.5", "skip_empty=true"});
     EXPECT_EQ(full.image.data(), skip.image.data());
     EXPECT_LT(skip.counters.at("volume.samples"), full.counters.at("volume.samples"));
@@ -85,4 +87,55 @@ TEST(Raymarch, RejectsSceneItCannotRender) {
     test::writeText(dir / "fog.json", R"({"volumes": [{"procedural": "sphere", "resolution": 8,
         "transfer_function": {"points": [{"s": 0, "extinction": 0.1}]}}]})");
     EXPECT_THROW(render((dir / "fog.json").string(), "4x4", {"skip_empty=true"}), Error);
+}
+
+namespace {
+
+// A volume of `grid` under a transfer function transparent at 0 and opaque above.
+Volume volumeOf(openvdb::FloatGrid::Ptr grid) {
+    Volume v;
+    v.grid = grid;
+    v.tf = TransferFunction(0, 1, {{0, {1, 1, 1}, 0}, {1, {1, 1, 1}, 1}});
+    computeStatistics(v);
+    return v;
+}
+
+}  // namespace
+
+// skip_empty=auto skips where the leaves fill at most 3/4 of the active box
+// and every value the HDDA skips is transparent; otherwise it marches all.
+TEST(Raymarch, SkipEmptyAutoDecidesBySparsityAndTransparency) {
+    initVdb();
+    auto dense = openvdb::FloatGrid::create(0.0f);
+    dense->tree().fill(openvdb::CoordBBox({0, 0, 0}, {31, 31, 31}), 0.5f, true);
+    dense->tree().voxelizeActiveTiles();
+    EXPECT_FALSE(emptySpacePays({volumeOf(dense)}));
+
+    auto sparse = openvdb::FloatGrid::create(0.0f);  // two leaves at opposite corners of a 200^3 box
+    sparse->tree().setValue(openvdb::Coord(0, 0, 0), 0.5f);
+    sparse->tree().setValue(openvdb::Coord(200, 200, 200), 0.5f);
+    EXPECT_TRUE(emptySpacePays({volumeOf(sparse)}));
+    EXPECT_TRUE(emptySpacePays({volumeOf(dense), volumeOf(sparse)}));  // filled and boxed voxels add over the volumes
+
+    auto hidden = sparse->deepCopy();  // an inactive tile the HDDA would skip, but visible
+    hidden->tree().addTile(2, openvdb::Coord(4096, 0, 0), 0.8f, false);
+    EXPECT_FALSE(emptySpacePays({volumeOf(hidden)}));
+    auto inactiveVoxel = sparse->deepCopy();
+    inactiveVoxel->tree().setValueOff(openvdb::Coord(1, 0, 0), 0.8f);
+    EXPECT_FALSE(emptySpacePays({volumeOf(inactiveVoxel)}));
+
+    Volume fog = volumeOf(sparse);  // opaque at the background: nothing may be skipped
+    fog.tf = TransferFunction(0, 1, {{0, {1, 1, 1}, 0.1}});
+    EXPECT_FALSE(emptySpacePays({fog}));
+    EXPECT_FALSE(emptySpacePays({}));
+}
+
+// Whatever auto decides, the image is the one of the full march.
+TEST(Raymarch, SkipEmptyAutoNeverChangesTheImage) {
+    for (const char* scene : {"builtin:cloud", "builtin:sphere"}) {
+        const RenderOutcome full = render(scene, "32x32", {"step=0.5", "skip_empty=false"});
+        const RenderOutcome automatic = render(scene, "32x32", {"step=0.5"});
+        EXPECT_EQ(full.image.data(), automatic.image.data()) << scene;
+        EXPECT_LE(automatic.counters.at("volume.samples"), full.counters.at("volume.samples")) << scene;
+    }
 }

@@ -29,6 +29,30 @@ EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
     }
 }
 
+bool emptySpacePays(const std::vector<Volume>& volumes) {
+    double filled = 0, boxed = 0;
+    for (const Volume& v : volumes) {
+        if (v.empty()) continue;
+        const float background = v.grid->background();
+        const auto skippable = [&](float value) { return value == background || !(v.tf.lookup(value).extinction > 0); };
+        if (v.tf.lookup(background).extinction > 0) return false;
+        const openvdb::FloatTree& tree = v.grid->tree();
+        auto tiles = tree.cbeginValueAll();
+        tiles.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);  // tiles, not voxels
+        for (; tiles; ++tiles) {
+            if (tiles.isValueOn()) filled += double(tiles.getVoxelCount());
+            else if (!skippable(*tiles)) return false;
+        }
+        for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+            filled += double(leaf->SIZE);
+            for (auto off = leaf->cbeginValueOff(); off; ++off)
+                if (!skippable(*off)) return false;
+        }
+        boxed += double(v.activeBox.volume());
+    }
+    return boxed > 0 && filled <= 0.75 * boxed;
+}
+
 VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototype)
     : volume(v), accessor(v.grid->getConstAccessor()), sampler(accessor, v.grid->transform()),
       voxelLength(v.voxelLength()), uniform(v.grid->transform().hasUniformScale()) {

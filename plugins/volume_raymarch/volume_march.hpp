@@ -52,6 +52,13 @@ private:
     std::vector<std::unique_ptr<VolumeIntersector>> intersectors_;
 };
 
+// skip_empty=auto: the HDDA changes nothing where every value it skips (the
+// background, inactive tiles and voxels) is transparent, and pays where the
+// grids are sparse: their leaves and active tiles fill at most 3/4 of their
+// active boxes (raymarch, one thread: the aneurism, 0.31 full, 1.9x faster;
+// the Gaffer smoke, 0.58 full, 1.37x; data/smoke_small.vdb, 0.96 full, 0.85x).
+bool emptySpacePays(const std::vector<Volume>& volumes);
+
 // Per thread (one per image row): grid accessors, HDDA copies, counts.
 class VolumeMarcher {
 public:
