@@ -1,6 +1,7 @@
 """What the benchmark scripts share: where weft is, running a command (a
 failure ends the benchmark with its output), image RMSE through `weft diff`,
-and the aneurism converted to a VDB once."""
+the aneurism converted to a VDB once, and the headline rows that `make bench`
+gathers into one table (bench/headlines.py)."""
 import json
 import os
 import subprocess
@@ -35,6 +36,20 @@ def diff_all(a, b):
 
 def rmse(a, b):
     return diff_all(a, b)[0]
+
+
+def headline(what, measured, target, holds):
+    """One row of `make bench`'s headline table: a ratio or figure this bench
+    measured side by side, its target and whether it holds. Appended as a JSON
+    line to the file $WEFT_BENCH_HEADLINES names (bench/run.sh sets it); a
+    bench run on its own just prints the row."""
+    row = {"bench": os.path.basename(sys.argv[0]), "what": what, "measured": measured, "target": target,
+           "holds": bool(holds)}
+    print("headline: %s: %s (target %s: %s)" % (what, measured, target, "holds" if holds else "missed"))
+    path = os.environ.get("WEFT_BENCH_HEADLINES")
+    if path:
+        with open(path, "a") as f:
+            f.write(json.dumps(row) + "\n")
 
 
 def prepare_aneurism(data, out):

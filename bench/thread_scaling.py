@@ -17,7 +17,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import ROOT, WEFT, diff_all, run  # noqa: E402
+from benchlib import ROOT, WEFT, diff_all, headline, run  # noqa: E402
 
 SMOKE = os.path.join(ROOT, "data", "smoke_small.vdb")
 CORNELL = os.path.join(ROOT, "scenes", "cornell.json")
@@ -65,8 +65,13 @@ def main():
     print("|---|---:|---:|---:|---:|")
     for technique, one, many, ratio, diff in rows:
         print("| %s | %.1f | %.1f | %.2fx | %g |" % (technique, one, many, ratio, diff))
-    print("speed-up >= 1.9x: %d of %d techniques; identical images: %d of %d"
-          % (held, len(rows), sum(r[4] == 0 for r in rows), len(rows)))
+    identical = sum(r[4] == 0 for r in rows)
+    print("speed-up >= 1.9x: %d of %d techniques; identical images: %d of %d" % (held, len(rows), identical, len(rows)))
+    slowest = min(rows, key=lambda r: r[3])
+    headline("thread scaling 1 -> %d threads, %s, every technique" % (cores, args.res),
+             "%d of %d >= 1.9x (lowest %.2fx, %s); images identical %d of %d" % (
+                 held, len(rows), slowest[3], slowest[0], identical, len(rows)),
+             ">= 1.9x each, identical", held == len(rows) and identical == len(rows))
 
 
 if __name__ == "__main__":
