@@ -110,9 +110,28 @@ std::uint64_t countChannels(HeaderReader& r, std::uint32_t size) {
         if (end == std::string::npos || end + 1 + 16 > bytes.size()) break;
         at = end + 1 + 16;
     }
-    if (at + 1 != bytes.size())
+    // The list's empty name must be the attribute's last byte: a last name
+    // cut short by the size leaves `at` there too, on a byte that is no NUL.
+    if (at + 1 != bytes.size() || bytes[at] != '\0')
         r.fail("the channel list does not end where its attribute's " + std::to_string(size) + " bytes end (corrupt)");
     return count;
+}
+
+// A stringvector is (32-bit length, characters) pairs, read by OpenEXR
+// until it has read the attribute's size: each string must fit in what is
+// left, or OpenEXR allocates its length and reads past the attribute.
+void walkStringVector(HeaderReader& r, std::uint32_t size) {
+    std::uint64_t left = size;
+    while (left > 0) {
+        if (left < 4) r.fail("a stringvector attribute of " + std::to_string(size) + " bytes ends inside a length (corrupt)");
+        const std::uint32_t length = r.u32("stringvector");
+        left -= 4;
+        if (length > left)
+            r.fail("a stringvector string of " + std::to_string(length) + " bytes in the " + std::to_string(left) +
+                   " left of its attribute (corrupt)");
+        r.skip(length);
+        left -= length;
+    }
 }
 
 void readValue(HeaderReader& r, const std::string& name, const std::string& type, std::uint32_t size, PartFacts& f) {
@@ -136,6 +155,8 @@ void readValue(HeaderReader& r, const std::string& name, const std::string& type
             r.fail("a preview image of " + std::to_string(w) + "x" + std::to_string(h) + " in " + std::to_string(size) +
                    " bytes (corrupt)");
         r.skip(size - 8u);
+    } else if (type == "stringvector") {
+        walkStringVector(r, size);
     } else if (name == "tiles" && type == "tiledesc") {
         f.tile[0] = r.u32("tiles"), f.tile[1] = r.u32("tiles");
         r.skip(1);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <vector>
 
 #include "core/image/exr_preflight.hpp"
 #include "core/image/image_io.hpp"
@@ -64,6 +65,28 @@ TEST(ExrPreflight, RefusesAttributeSizesOpenExrWouldReadOtherwise) {
     putWord(bad, window + 17, 20);
     EXPECT_NE(preflightError(dir, bad).find("type 'box2i' holds 20 bytes instead of 16"), std::string::npos)
         << preflightError(dir, bad);
+    // A size that ends one byte into the next channel's name: that byte is no
+    // terminator (a fuzzed file's list so ran 67 bytes on, and OpenEXR then
+    // read an attribute size of 825 MB out of the pixels' offsets).
+    bad = good;
+    putWord(bad, chlist + 16, 18 + 1);
+    EXPECT_NE(preflightError(dir, bad).find("the channel list does not end where its attribute's 19 bytes end"),
+              std::string::npos) << preflightError(dir, bad);
+    // A stringvector's strings must fit in it: OpenEXR reads each length and allocates it.
+    const auto word = [](std::uint32_t v) {
+        std::string w(4, '\0');
+        putWord(w, 0, v);
+        return w;
+    };
+    const auto withStrings = [&](std::uint32_t size, const std::string& body) {
+        std::string attr = std::string("names\0stringvector\0", 19) + word(size) + body;
+        attr.resize(23 + size, 'x');
+        return good.substr(0, 8) + attr + good.substr(8);
+    };
+    EXPECT_EQ(preflightError(dir, withStrings(4 + 3 + 4, word(3) + "abc" + word(0))), "");
+    EXPECT_NE(preflightError(dir, withStrings(8, word(0x7fffffff))).find("a stringvector string of 2147483647 bytes in the 4 left"),
+              std::string::npos);
+    EXPECT_NE(preflightError(dir, withStrings(6, word(1))).find("ends inside a length"), std::string::npos);
     // A preview attribute (OpenEXR allocates its width x height pixels) must hold exactly them,
     // also where width x height x 4 would wrap around 2^64.
     const auto withPreview = [&](std::uint32_t w, std::uint32_t h, std::uint32_t pixelBytes) {

@@ -306,6 +306,15 @@ TEST(FuzzRegressions, VdbOfFormatVersionZeroIsRefusedBeforeOpenVdb) {
     expectFindingRefused(vdbFile, "vdb", "format-version-0-peaks-at-1.7GB.vdb", "file format version 0 is not one weft reads");
 }
 
+// A channel list of 73 bytes whose last byte was the first of a fifth
+// channel's name, not the list's terminator: the walk took it for one, and
+// OpenEXR, reading the names on, took an attribute size of 825 MB from the
+// bytes after the header and allocated it.
+TEST(FuzzRegressions, ExrChannelListCutInsideANameIsRefusedBeforeOpenExr) {
+    expectFindingRefused(exrFile, "exr", "chlist-last-name-cut-by-its-size.exr",
+                         "the channel list does not end where its attribute's 73 bytes end");
+}
+
 // A channel list that stated 73 bytes but whose list, read as OpenEXR reads
 // it, ended elsewhere: the preflight's walk and OpenEXR's saw different
 // headers, and OpenEXR's held a data window 2359300 pixels wide, which it
