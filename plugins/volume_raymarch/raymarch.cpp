@@ -82,17 +82,17 @@ struct RaymarchCounts {
 class Raymarch final : public Technique {
 public:
     Raymarch(const Scene& scene, const ParamSet& p)
-        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), p.getString("skip_empty") == "true",
-                  p.getString("offset_pattern")},
+        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), false, p.getString("offset_pattern")},
           plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         if (params_.jitter && !params_.offsetPattern.empty())
             throw Error("volume.raymarch: jitter=true and offset_pattern both set the first sample's offset; choose one");
+        const std::string& skip = p.getString("skip_empty");
         for (const Volume& vol : scene.volumes)
-            if (params_.skipEmpty && vol.tf.lookup(vol.grid->background()).extinction > 0)
+            if (skip == "true" && vol.tf.lookup(vol.grid->background()).extinction > 0)
                 throw Error("volume.raymarch: skip_empty=true needs a transfer function that is transparent at the grid's background value "
                             "(volume '" + vol.source + "')");
         requireSurfaceLights(scene, "volume.raymarch");
-        if (p.getString("skip_empty") == "auto") params_.skipEmpty = emptySpacePays(scene.volumes);
+        params_.skipEmpty = skip == "true" || (skip == "auto" && emptySpacePays(scene.volumes));
         if (params_.skipEmpty && !scene.volumes.empty()) skipper_.emplace(scene.volumes);
     }
 
