@@ -67,9 +67,16 @@ public:
     }
 
 private:
+    // A root entry spans 4096^3 voxels from its origin; OpenVDB and weft add
+    // to coordinates (node extents, bounding boxes), so an origin near the
+    // int limits overflows. Real grids sit far inside +-2^30.
     std::array<std::int32_t, 3> coordinate(const char* what) {
+        constexpr std::int32_t kReach = 1 << 30;
         std::array<std::int32_t, 3> c{};
         w_.bytes(c.data(), sizeof c, what);
+        for (const std::int32_t x : c)
+            if (x < -kReach || x > kReach)
+                w_.corrupt(std::string(what) + " " + std::to_string(x) + " lies beyond the index range +-2^30 weft renders");
         return c;
     }
 

@@ -299,6 +299,14 @@ TEST(FuzzRegressions, VdbRootTileFlagThatIsNoBoolIsRefused) {
     expectFindingRefused(vdbFile, "vdb", "root-tile-flag-2-is-no-bool.vdb", "root tile flag 2 (not 0 or 1)");
 }
 
+// A root tile at x = INT_MIN: its active box was framed one voxel wider,
+// INT_MIN - 1 (UBSan: signed integer overflow in Coord::offset). Root
+// origins beyond +-2^30 are refused, so no coordinate sum overflows.
+TEST(FuzzRegressions, VdbRootTileAtTheIntLimitIsRefused) {
+    expectFindingRefused(vdbFile, "vdb", "root-tile-origin-at-int-min.vdb",
+                         "root tile origin -2147483648 lies beyond the index range +-2^30");
+}
+
 // A 40 KB file of format version 0: OpenVDB's reader of the pre-release
 // layouts, which the preflight did not walk, peaked at 1.7 GB before it
 // gave up. Such versions are now refused before OpenVDB opens the file.
