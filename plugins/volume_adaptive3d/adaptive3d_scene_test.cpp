@@ -109,6 +109,21 @@ TEST(Adaptive3dScene, CombinedScenesAreTheSameForAnyThreadCount) {
     }
 }
 
+TEST(Adaptive3dScene, SppAveragesTheSurfacesLightSamples) {
+    // The Cornell box's area light: one light sample per pixel is noisy.
+    // More samples come closer to a 256-sample render, and the volume pass
+    // is the same whatever the spp (the smoke's pixels over no wall agree).
+    const auto at = [](int spp) {
+        return test::render(combined("smoke_in_cornell.json"), "32x32", {}, "volume.adaptive3d", 0, spp);
+    };
+    const RenderOutcome one = at(1), sixteen = at(16), ref = at(256);
+    const double e1 = test::rmse(one.image, ref.image), e16 = test::rmse(sixteen.image, ref.image);
+    EXPECT_LT(e16, 0.5 * e1);
+    EXPECT_EQ(sixteen.counters.at("rays.surface"), 16 * one.counters.at("rays.surface"));
+    EXPECT_EQ(sixteen.counters.at("volume.samples"), one.counters.at("volume.samples"));
+    for (float v : ref.image.data()) ASSERT_TRUE(std::isfinite(v));
+}
+
 TEST(SliceVolumes, TwoOverlappingVolumesAgreeWithFineRaymarch) {
     const RenderOutcome ray = test::render(combined("two_volumes.json"), "64x48", {"step=0.1", "ert=1"}, "volume.raymarch");
     for (const char* technique : {"volume.preint", "volume.adaptive3d"}) {

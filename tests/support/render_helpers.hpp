@@ -1,5 +1,6 @@
 #pragma once
 // In-process renders for tests (no files), through the same path as the CLI.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,13 +10,14 @@
 namespace weft::test {
 
 inline RenderOutcome render(const std::string& input, const std::string& res, std::vector<std::string> sets,
-                            std::string technique = "volume.raymarch", int threads = 0) {
+                            std::string technique = "volume.raymarch", int threads = 0, std::optional<int> spp = {}) {
     RenderRequest r;
     r.input = input;
     r.resolution = res;
     r.sets = std::move(sets);
     r.technique = std::move(technique);
     r.threads = threads;
+    r.spp = spp;
     return renderToImage(r);
 }
 
