@@ -1,15 +1,17 @@
 #pragma once
-// Trilinear lookups of a float grid exactly as openvdb::tools::BoxSampler
-// makes them (the same eight values, the same arithmetic: images do not
-// change), with the eight values read straight from the leaf that holds
-// them whenever one leaf does (343 of a leaf's 512 cells). The leaf of the
-// last lookup is kept: a ray's consecutive samples mostly stay in one 8^3
-// leaf, and the accessor's eight getValue calls per sample were most of a
-// march's time. One sampler per thread, like the accessor it reads through.
+// Trilinear lookups of a float grid: openvdb::tools::BoxSampler's eight
+// values and interpolation order (z, then y, then x), in float arithmetic,
+// with the values read straight from the leaves that hold them. The leaf of
+// the last lookup and, once a cell straddles into them, its seven
+// neighbours (+8 in x, y, z) are kept: a ray's consecutive samples mostly
+// stay in one 8^3 leaf, and the accessor's eight getValue calls per sample,
+// with BoxSampler's double-precision weights, were most of a march's time.
+// Results differ from BoxSampler's by float rounding only (a few ulps of
+// the values' range). One sampler per thread, like the accessor it reads through.
 #include <climits>
+#include <cmath>
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
 
 namespace weft {
 
@@ -22,41 +24,85 @@ public:
 
     // At an index-space point.
     float isSample(const openvdb::Vec3d& p) {
-        const openvdb::Vec3i i = openvdb::tools::local_util::floorVec3(p);
-        const openvdb::Vec3d uvw = p - i;
+        const int ix = floorToInt(p.x()), iy = floorToInt(p.y()), iz = floorToInt(p.z());
+        const double fx = ix, fy = iy, fz = iz;
+        const openvdb::Coord origin(ix & ~7, iy & ~7, iz & ~7);
+        if (origin != origin_) moveTo(origin);
+        const int lx = ix & 7, ly = iy & 7, lz = iz & 7;
         float v[2][2][2];
-        if ((i.x() & 7) != 7 && (i.y() & 7) != 7 && (i.z() & 7) != 7) fromLeaf(i, v);
-        else openvdb::tools::BoxSampler::getValues(v, *acc_, openvdb::Coord(i));  // the cell straddles leaves
-        return openvdb::tools::BoxSampler::trilinearInterpolation(v, uvw);
+        if (lx != 7 && ly != 7 && lz != 7) fromLeaf(lx << 6 | ly << 3 | lz, v);
+        else fromBlock(lx, ly, lz, v);  // the cell straddles leaves
+        return trilinear(v, float(p.x() - fx), float(p.y() - fy), float(p.z() - fz));
     }
     // At a world-space point.
     float wsSample(const openvdb::Vec3d& p) { return isSample(xf_->worldToIndex(p)); }
 
 private:
-    void fromLeaf(const openvdb::Vec3i& i, float (&v)[2][2][2]) {
-        const openvdb::Coord origin(i.x() & ~7, i.y() & ~7, i.z() & ~7);
-        if (origin != origin_) {
-            origin_ = origin;
-            const auto* leaf = acc_->probeConstLeaf(origin);
-            data_ = leaf ? leaf->buffer().data() : nullptr;
-            // No leaf: one tile (or the background) covers the leaf's whole region.
-            if (!data_) constant_ = acc_->getValue(origin);
+    // One 8^3 region: a leaf's values, or the one tile (or background) value covering it.
+    struct Region {
+        const float* data = nullptr;
+        float constant = 0.0f;
+        float at(int offset) const { return data ? data[offset] : constant; }
+    };
+
+    // std::floor is a libm call on baseline x86-64 (no SSE4.1 round);
+    // truncation and a compare are not. Callers' points lie inside grids
+    // (index +-2^30), well within int.
+    static int floorToInt(double x) {
+        const int i = int(x);
+        return i - (x < double(i));
+    }
+    static float lerp(float a, float b, float w) { return a + (b - a) * w; }
+    static float trilinear(const float (&v)[2][2][2], float u, float s, float t) {
+        return lerp(lerp(lerp(v[0][0][0], v[0][0][1], t), lerp(v[0][1][0], v[0][1][1], t), s),
+                    lerp(lerp(v[1][0][0], v[1][0][1], t), lerp(v[1][1][0], v[1][1][1], t), s), u);
+    }
+
+    void moveTo(const openvdb::Coord& origin) {
+        origin_ = origin;
+        region_[0] = probe(origin);
+        probed_ = 1;  // the neighbours are probed when a cell first reaches them
+    }
+    Region probe(const openvdb::Coord& origin) const {
+        Region r;
+        if (const auto* leaf = acc_->probeConstLeaf(origin)) r.data = leaf->buffer().data();
+        else r.constant = acc_->getValue(origin);
+        return r;
+    }
+    const Region& neighbour(int j) {
+        if (!(probed_ >> j & 1)) {
+            region_[j] = probe(origin_.offsetBy(j >> 2 & 1 ? 8 : 0, j >> 1 & 1 ? 8 : 0, j & 1 ? 8 : 0));
+            probed_ |= 1u << j;
         }
-        if (!data_) {
+        return region_[j];
+    }
+
+    void fromLeaf(int n, float (&v)[2][2][2]) const {  // n: LeafNode::coordToOffset of the cell's low corner
+        const Region& r = region_[0];
+        if (!r.data) {
             for (auto& plane : v)
-                for (auto& row : plane) row[0] = row[1] = constant_;
+                for (auto& row : plane) row[0] = row[1] = r.constant;
             return;
         }
-        const std::size_t n = std::size_t((i.x() & 7) << 6 | (i.y() & 7) << 3 | (i.z() & 7));  // LeafNode::coordToOffset
-        v[0][0][0] = data_[n], v[0][0][1] = data_[n + 1], v[0][1][0] = data_[n + 8], v[0][1][1] = data_[n + 9];
-        v[1][0][0] = data_[n + 64], v[1][0][1] = data_[n + 65], v[1][1][0] = data_[n + 72], v[1][1][1] = data_[n + 73];
+        const float* d = r.data;
+        v[0][0][0] = d[n], v[0][0][1] = d[n + 1], v[0][1][0] = d[n + 8], v[0][1][1] = d[n + 9];
+        v[1][0][0] = d[n + 64], v[1][0][1] = d[n + 65], v[1][1][0] = d[n + 72], v[1][1][1] = d[n + 73];
+    }
+    void fromBlock(int lx, int ly, int lz, float (&v)[2][2][2]) {
+        for (int dx = 0; dx < 2; ++dx)
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dz = 0; dz < 2; ++dz) {
+                    const int x = lx + dx, y = ly + dy, z = lz + dz;  // 0..8: 8 is the next leaf's 0
+                    const int j = (x >> 3) << 2 | (y >> 3) << 1 | (z >> 3);
+                    v[dx][dy][dz] = neighbour(j).at((x & 7) << 6 | (y & 7) << 3 | (z & 7));
+                }
     }
 
     const Accessor* acc_;
     const openvdb::math::Transform* xf_;
     openvdb::Coord origin_{INT_MAX, INT_MAX, INT_MAX};  // no leaf origin: those are multiples of 8
-    const float* data_ = nullptr;
-    float constant_ = 0.0f;
+    Region region_[8];                                 // the leaf at origin_ + 8 (dx, dy, dz), j = dx<<2 | dy<<1 | dz
+    unsigned probed_ = 0;
 };
 
 }  // namespace weft
