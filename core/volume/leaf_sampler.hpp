@@ -89,13 +89,15 @@ private:
         v[1][0][0] = d[n + 64], v[1][0][1] = d[n + 65], v[1][1][0] = d[n + 72], v[1][1][1] = d[n + 73];
     }
     void fromBlock(int lx, int ly, int lz, float (&v)[2][2][2]) {
+        // Per axis: the low and high corner's region step (0 or 1) and offset in it.
+        const int sx = lx == 7, sy = ly == 7, sz = lz == 7;
+        const int ox[2] = {lx << 6, sx ? 0 : (lx + 1) << 6}, oy[2] = {ly << 3, sy ? 0 : (ly + 1) << 3},
+                  oz[2] = {lz, sz ? 0 : lz + 1};
+        const int jx[2] = {0, sx << 2}, jy[2] = {0, sy << 1}, jz[2] = {0, sz};
         for (int dx = 0; dx < 2; ++dx)
             for (int dy = 0; dy < 2; ++dy)
-                for (int dz = 0; dz < 2; ++dz) {
-                    const int x = lx + dx, y = ly + dy, z = lz + dz;  // 0..8: 8 is the next leaf's 0
-                    const int j = (x >> 3) << 2 | (y >> 3) << 1 | (z >> 3);
-                    v[dx][dy][dz] = neighbour(j).at((x & 7) << 6 | (y & 7) << 3 | (z & 7));
-                }
+                for (int dz = 0; dz < 2; ++dz)
+                    v[dx][dy][dz] = neighbour(jx[dx] | jy[dy] | jz[dz]).at(ox[dx] | oy[dy] | oz[dz]);
     }
 
     const Accessor* acc_;
