@@ -19,6 +19,8 @@ PACKAGES=(
   # tools: vdb_render/vdb_print, oiiotool/iinfo, ociocheck; python for scripts
   libopenvdb-tools openimageio-tools opencolorio-tools
   python3 python3-openimageio python3-numpy python3-matplotlib
+  # the weft Python module (python/): pybind11 against Debian's python3
+  pybind11-dev python3-dev
   # a single-node Slurm cluster for the farm tests (scripts/slurm-local.sh)
   slurmctld slurmd slurm-client munge
 )

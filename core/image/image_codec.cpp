@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -13,13 +14,19 @@ namespace weft {
 namespace {
 
 // WEFT_IMAGE_CODEC if set, else weft_oiio.so beside the running executable,
-// else the loader's own search (LD_LIBRARY_PATH).
+// else beside the shared object this code is in (the Python module, whose
+// executable is python3), else the loader's own search (LD_LIBRARY_PATH).
 std::vector<std::string> candidatePaths() {
     std::vector<std::string> paths;
     if (const char* env = std::getenv("WEFT_IMAGE_CODEC")) paths.emplace_back(env);
     std::error_code ec;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (!ec) paths.push_back((exe.parent_path() / "weft_oiio.so").string());
+    Dl_info self{};
+    if (dladdr(reinterpret_cast<const void*>(&candidatePaths), &self) && self.dli_fname) {
+        const std::string beside = (std::filesystem::path(self.dli_fname).parent_path() / "weft_oiio.so").string();
+        if (std::find(paths.begin(), paths.end(), beside) == paths.end()) paths.push_back(beside);
+    }
     paths.emplace_back("weft_oiio.so");
     return paths;
 }

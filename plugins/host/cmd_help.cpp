@@ -12,6 +12,7 @@
 #include "core/base/render_options.hpp"
 
 #include "plugins/host/command.hpp"
+#include "plugins/host/help_text.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {
@@ -42,11 +43,7 @@ std::string knobsText(const TechniqueInfo& t) {
     return text.empty() ? "none" : text;
 }
 
-void printText(const TechniqueInfo& t) {
-    std::printf("%s: %s\n\nparameters (--set key=value):\n%s", t.name.c_str(), t.summary.c_str(), t.params.helpText().c_str());
-    std::printf("\nconverged reference (sweep/tune --reference auto): %s\nspeed/accuracy knobs (weft tune), cheapest first: %s\n",
-                referenceText(t).c_str(), knobsText(t).c_str());
-}
+void printText(const TechniqueInfo& t) { std::printf("%s", techniqueHelpText(t).c_str()); }
 
 void printMarkdown(const TechniqueInfo& t) {
     const bool stop = !t.summary.empty() && t.summary.back() == '.';
@@ -99,5 +96,11 @@ const CommandRegistrar registrar{{"help", 90, [](CLI::App& app) {
 }}};
 
 }  // namespace
+
+std::string techniqueHelpText(const TechniqueInfo& t) {
+    return t.name + ": " + t.summary + "\n\nparameters (--set key=value):\n" + t.params.helpText() +
+           "\nconverged reference (sweep/tune --reference auto): " + referenceText(t) +
+           "\nspeed/accuracy knobs (weft tune), cheapest first: " + knobsText(t) + "\n";
+}
 
 }  // namespace weft
