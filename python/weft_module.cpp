@@ -40,14 +40,15 @@ namespace {
 class SceneFile {
 public:
     explicit SceneFile(const std::string& path) : path_(path) {}
-    SceneFile(const std::string& jsonText, bool /*owned*/) {
+    static std::shared_ptr<SceneFile> fromJson(const std::string& jsonText) {
         std::string pattern = (fs::temp_directory_path() / "weft-scene-XXXXXX").string();
         if (!mkdtemp(pattern.data())) throw Error("cannot create a folder for the scene in " + fs::temp_directory_path().string());
-        dir_ = pattern;
-        path_ = (fs::path(dir_) / "scene.json").string();
-        std::ofstream out(path_);
+        auto file = std::make_shared<SceneFile>((fs::path(pattern) / "scene.json").string());
+        file->dir_ = pattern;  // removed with the file
+        std::ofstream out(file->path_);
         out << jsonText;
-        if (!out) throw Error("cannot write the scene to " + path_);
+        if (!out) throw Error("cannot write the scene to " + file->path_);
+        return file;
     }
     ~SceneFile() {
         std::error_code ec;
@@ -175,7 +176,7 @@ std::shared_ptr<PyScene> loadScenePy(const py::object& source, const std::string
         py::dict copy = py::module_::import("copy").attr("deepcopy")(source);
         absolutize(copy, fs::absolute(baseDir.value_or(fs::current_path().string())));
         const std::string text = py::module_::import("json").attr("dumps")(copy).cast<std::string>();
-        return std::make_shared<PyScene>(std::make_shared<SceneFile>(text, true), grid);
+        return std::make_shared<PyScene>(SceneFile::fromJson(text), grid);
     }
     return std::make_shared<PyScene>(std::make_shared<SceneFile>(py::str(source).cast<std::string>()), grid);
 }

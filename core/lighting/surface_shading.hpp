@@ -57,12 +57,16 @@ struct SurfaceCounts {
 
 // Shades `hit` and composites it behind the volume already in px
 // (premultiplied RGBA): colour = volume + (1 - alpha) x surface, alpha 1.
+// An opaque surface of radiance L behind what px (premultiplied RGBA) holds.
+inline void compositeBehind(float* px, const Vec3f& L) {
+    const float T = 1.0f - px[3];
+    px[0] += T * L.x(), px[1] += T * L.y(), px[2] += T * L.z(), px[3] = 1.0f;
+}
+
 inline void compositeSurfaceBehind(const Scene& scene, const MeshAccel& accel, const Ray& ray, const SurfaceHit& hit,
                                    const PixelSampler& sampler, float eps, float* px, SurfaceCounts& counts) {
     ++counts.surface;
-    const Vec3f L = shadeSurface(scene, accel, ray, hit, sampler, eps, counts.shadow);
-    const float T = 1.0f - px[3];
-    px[0] += T * L.x(), px[1] += T * L.y(), px[2] += T * L.z(), px[3] = 1.0f;
+    compositeBehind(px, shadeSurface(scene, accel, ray, hit, sampler, eps, counts.shadow));
 }
 
 }  // namespace weft

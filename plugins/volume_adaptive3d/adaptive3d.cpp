@@ -132,6 +132,9 @@ private:
         const RenderSettings& s = ctx.settings;
         scene.emitters();  // built before the pixel loop
         const float eps = rayEpsilon(scene);
+        // The volume is one deterministic pass; --spp averages the surface's
+        // light samples (stratified as the other techniques').
+        const std::uint32_t spp = std::uint32_t(std::max(1, s.spp));
         // An image-space pass over the pixels' surface hits (the settings' row band).
         const int end = s.rowEnd < 0 ? s.height : std::min(s.rowEnd, s.height);
         tbb::parallel_for(std::clamp(s.rowBegin, 0, end), end, [&](int y) {
@@ -140,18 +143,12 @@ private:
                 const SurfaceHit& hit = hits[std::size_t(y) * pw + x];
                 if (!hit.valid()) continue;
                 const Ray ray = scene.camera.generate(x + 0.5, y + 0.5, s.width, s.height);
-                // The volume is one deterministic pass; --spp averages the
-                // surface's light samples (stratified as the other techniques').
-                const std::uint32_t spp = std::uint32_t(std::max(1, s.spp));
                 Vec3f sum(0.0f);
                 for (std::uint32_t k = 0; k < spp; ++k) {
                     ++counts.surface;
                     sum += shadeSurface(scene, accel, ray, hit, PixelSampler(s.seed, x, y, k, spp), eps, counts.shadow);
                 }
-                float* px = image.pixel(x, y);
-                const Vec3f L = sum / float(spp);
-                const float T = 1.0f - px[3];
-                px[0] += T * L.x(), px[1] += T * L.y(), px[2] += T * L.z(), px[3] = 1.0f;
+                compositeBehind(image.pixel(x, y), sum / float(spp));
             }
             ctx.counters.add(kRaysSurface, counts.surface);
             ctx.counters.add(kRaysShadow, counts.shadow);
