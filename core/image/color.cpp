@@ -2,6 +2,9 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include <openvdb/math/Mat3.h>
+
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <vector>
@@ -15,6 +18,21 @@ namespace OCIO = OCIO_NAMESPACE;
 namespace weft {
 
 namespace {
+
+// The 3x3 matrix from linear RGB of primaries (x, y) and white point (x, y)
+// to CIE XYZ, as a row-major 4x4 for OCIO's MatrixTransform: the primaries'
+// XYZ columns scaled so that RGB (1, 1, 1) maps to the white at Y = 1.
+std::array<double, 16> rgbToXyz(const double (&primaries)[3][2], const double (&white)[2]) {
+    const auto xyz = [](const double (&c)[2]) { return openvdb::math::Vec3d(c[0] / c[1], 1.0, (1.0 - c[0] - c[1]) / c[1]); };
+    openvdb::math::Mat3d p;
+    for (int i = 0; i < 3; ++i) p.setCol(i, xyz(primaries[i]));
+    const openvdb::math::Vec3d scale = p.inverse() * xyz(white);
+    std::array<double, 16> m{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m[4 * r + c] = p(r, c) * scale[c];
+    m[15] = 1;
+    return m;
+}
 
 // OCIO 2.1 has no built-in configs, so the default one is built here:
 // a scene-linear Rec.709 reference space and the sRGB display encoding.
@@ -50,7 +68,19 @@ OCIO::ConstConfigRcPtr builtinConfig() {
     acescg->setTransform(toAp1, OCIO::COLORSPACE_DIR_FROM_REFERENCE);
     config->addColorSpace(acescg);
 
+    // CIE XYZ with the D65 white at Y = 1, for colours given as spectra
+    // (blackbody emission); OCIO v2 configs name it by the role below.
+    OCIO::ColorSpaceRcPtr xyz = OCIO::ColorSpace::Create();
+    xyz->setName("cie_xyz_d65");
+    xyz->setFamily("scene-linear");
+    auto toXyz = OCIO::MatrixTransform::Create();
+    const std::array<double, 16> rec709 = rgbToXyz({{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}}, {0.3127, 0.3290});
+    toXyz->setMatrix(rec709.data());
+    xyz->setTransform(toXyz, OCIO::COLORSPACE_DIR_FROM_REFERENCE);
+    config->addColorSpace(xyz);
+
     config->setRole(OCIO::ROLE_SCENE_LINEAR, "lin_rec709");
+    config->setRole(OCIO::ROLE_INTERCHANGE_DISPLAY, "cie_xyz_d65");
     config->setRole(OCIO::ROLE_DEFAULT, "lin_rec709");
     config->addDisplayView("sRGB", "Standard", "srgb_display", "");
     config->setActiveDisplays("sRGB");
@@ -153,6 +183,20 @@ std::unique_ptr<ColorConversion> colorConversion(const std::string& from, const 
         return std::make_unique<OcioColorConversion>(config->getProcessor(from.c_str(), to.c_str())->getDefaultCPUProcessor());
     } catch (const OCIO::Exception& e) {
         throw Error("colorconvert " + from + " " + to + ": " + e.what());
+    }
+}
+
+void xyzToSceneLinear(float* xyz, int count) {
+    const OCIO::ConstConfigRcPtr config = activeConfig();
+    if (!config->hasRole(OCIO::ROLE_INTERCHANGE_DISPLAY))
+        throw Error(std::string("colour management: config '") + config->getName() + "' has no '" + OCIO::ROLE_INTERCHANGE_DISPLAY +
+                    "' role (CIE XYZ D65), which blackbody emission needs");
+    try {
+        const auto cpu = config->getProcessor(OCIO::ROLE_INTERCHANGE_DISPLAY, OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor();
+        OCIO::PackedImageDesc desc(xyz, count, 1, 3);
+        cpu->apply(desc);
+    } catch (const OCIO::Exception& e) {
+        throw Error(std::string("colour management: CIE XYZ to scene_linear: ") + e.what());
     }
 }
 

@@ -32,6 +32,11 @@ public:
     virtual void apply(Image& image) const = 0;
 };
 
+// CIE XYZ (D65 white at Y = 1) to the config's scene_linear, in place
+// (interleaved, count colours), through its cie_xyz_d65_interchange role;
+// an Error when the config has none.
+void xyzToSceneLinear(float* xyz, int count);
+
 // An Error naming the colour space (and listing the config's) when one is unknown.
 std::unique_ptr<ColorConversion> colorConversion(const std::string& from, const std::string& to);
 

@@ -63,6 +63,10 @@ private:
     mutable std::shared_ptr<MeshCache> meshCache_;
 };
 
+// For techniques that do not render volume emission: an Error naming the
+// first emitting volume and the techniques that do render it.
+void requireNoEmission(const Scene& scene, const std::string& technique);
+
 // Loads a scene from a .json file, a bare .obj/.ply mesh (framed like a bare
 // .vdb, lit by its emissive materials or else by a light over the camera), a bare .vdb (framed like vdb_render does,
 // default transfer function over the grid's value range) or builtin:NAME.

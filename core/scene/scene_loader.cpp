@@ -13,6 +13,7 @@
 #include "core/base/render_options.hpp"
 #include "core/scene/placement.hpp"
 #include "core/scene/scene.hpp"
+#include "core/volume/volume_grids.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -184,27 +185,120 @@ VolumeMedium readMedium(const ObjectReader& r) {
     return m;
 }
 
+// A path of the scene: relative to its folder; "#" names the frame.
+fs::path scenePath(const std::string& text, const fs::path& baseDir, std::optional<int> frame) {
+    fs::path file = frame ? expandFrameName(text, *frame) : text;
+    return file.is_relative() ? baseDir / file : file;
+}
+
+// "grids": {"density": NAME, "temperature": NAME | {"file": F, "grid": NAME}, "emission": ...}.
+std::map<std::string, GridSource> readGridSources(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
+    const ObjectReader g(r.doc(), r.child("grids"), "grids", {gridRoles().begin(), gridRoles().end()});
+    std::map<std::string, GridSource> sources;
+    for (const std::string& role : gridRoles()) {
+        if (!g.has(role)) continue;
+        const json& v = g.value()[role];
+        if (v.is_string()) {
+            sources[role].grid = v.get<std::string>();
+            continue;
+        }
+        if (role == "density") g.fail(role, "grids.density must be a grid name of the volume's 'file'");
+        if (!v.is_object()) g.fail(role, "grids." + role + " must be a grid name or {\"file\": ..., \"grid\": ...}");
+        const ObjectReader o(r.doc(), g.child(role), "grids." + role, {"file", "grid"});
+        if (!o.has("file")) o.failAt(o.pointer(), "grids." + role + " needs a 'file' (or give the grid's name alone)");
+        sources[role] = {scenePath(o.string("file", ""), baseDir, frame).string(), o.string("grid", "")};
+    }
+    return sources;
+}
+
+// "emission": {"temperature_scale", "temperature_offset", "blackbody_intensity", "color", "strength"}.
+EmissionSettings readEmission(const ObjectReader& r) {
+    EmissionSettings e;
+    e.temperatureScale = r.number("temperature_scale", e.temperatureScale, 0.0, 1e9);
+    e.temperatureOffset = r.number("temperature_offset", e.temperatureOffset, -1e9, 1e9);
+    e.blackbodyIntensity = r.number("blackbody_intensity", e.blackbodyIntensity, 0.0, 1e12);
+    e.color = r.vec3("color", e.color);
+    for (int i = 0; i < 3; ++i)
+        if (!(e.color[i] >= 0 && e.color[i] <= kHuge)) r.fail("color", "emission.color must be three numbers >= 0");
+    e.strength = r.number("strength", e.strength, 0.0, 1e12);
+    return e;
+}
+
+// The temperature and emission grids of a volume whose density is read,
+// in the density's index space, and Volume::grids saying what was read.
+struct EmissionGrids {
+    openvdb::FloatGrid::Ptr temperature, emission;
+};
+
+EmissionGrids readEmissionGrids(Volume& vol, const std::map<std::string, std::string>& names, const std::map<std::string, GridSource>& own,
+                                const std::string& volumeFile) {
+    EmissionGrids out;
+    for (const std::string& role : {"temperature", "emission"}) {
+        std::string file = volumeFile, grid;
+        if (const auto it = own.find(role); it != own.end()) file = it->second.file, grid = it->second.grid;
+        else if (const auto n = names.find(role); n != names.end()) grid = n->second;
+        else continue;
+        auto g = inIndexSpaceOf(readFloatGrid(file, grid, role), vol.grid->transform());
+        vol.grids += " " + role + "=" + g->getName() + (file == volumeFile ? "" : " (" + file + ")");
+        (role == std::string("temperature") ? out.temperature : out.emission) = g;
+    }
+    return out;
+}
+
+void buildEmission(Volume& vol, const EmissionGrids& grids, const EmissionSettings& settings) {
+    if (!grids.temperature && !grids.emission) return;
+    vol.emission = buildEmissionGrid(grids.temperature.get(), grids.emission.get(), settings, vol.grid->transform());
+}
+
 Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
     Volume vol;
     const bool fromFile = r.has("file"), procedural = r.has("procedural");
     if (fromFile == procedural) r.failAt(r.pointer(), "a volume needs exactly one of 'file' or 'procedural'");
     // Values are read first so their own errors keep their own positions.
     // A frame-numbered file ("smoke.#.vdb") names the frame being rendered.
-    const std::string fileText = r.string("file", "");
-    fs::path file = frame ? expandFrameName(fileText, *frame) : fileText;
-    if (file.is_relative()) file = baseDir / file;
-    const std::string grid = r.string("grid", ""), kind = r.string("procedural", "");
+    const fs::path file = scenePath(r.string("file", ""), baseDir, frame);
+    const std::string kind = r.string("procedural", "");
     const int res = int(r.number("resolution", 128, 4, 1024));
     const auto seed = std::uint64_t(r.number("seed", 1, 0, 4294967295.0));
+    const std::map<std::string, GridSource> sources = r.has("grids") ? readGridSources(r, baseDir, frame) : std::map<std::string, GridSource>{};
+    if (r.has("grid") && sources.count("density")) r.fail("grid", "name the density grid once: 'grid' or 'grids.density'");
+    const std::string grid = sources.count("density") ? sources.at("density").grid : r.string("grid", "");
+    std::map<std::string, std::string> names;
+    std::map<std::string, GridSource> own;
+    for (const auto& [role, src] : sources) {
+        if (role == "density") continue;
+        if (src.file.empty()) names[role] = src.grid;
+        else own[role] = src;
+    }
+    if (procedural && !names.empty())
+        r.fail("grids", "a procedural volume's grids need their own 'file'");
+    const EmissionSettings settings =
+        r.has("emission") ? readEmission(ObjectReader(r.doc(), r.child("emission"), "emission",
+                                                      {"temperature_scale", "temperature_offset", "blackbody_intensity", "color", "strength"}))
+                          : EmissionSettings{};
+    EmissionGrids emitting;
     try {
         vol.source = fromFile ? file.string() : "procedural:" + kind;
         vol.grid = fromFile ? readFloatGrid(vol.source, grid) : makeProceduralGrid(kind, res, seed);
+        vol.grids = "density=" + vol.grid->getName();
+        emitting = readEmissionGrids(vol, names, own, vol.source);
+        if (procedural && kind == "fire" && !emitting.temperature) {
+            emitting.temperature = makeProceduralTemperature(res, seed);
+            vol.grids += " temperature=" + emitting.temperature->getName();
+        }
     } catch (const Error& e) {
         r.fail(fromFile ? "file" : "procedural", e.what());
     }
+    if (r.has("emission") && !emitting.temperature && !emitting.emission)
+        r.fail("emission", "emission settings need a temperature or emission grid (see 'grids')");
     vol.name = vol.grid->getName();
     const Placement placement = readPlacement(r);
     if (!placement.identity()) vol.grid = placeGrid(vol.grid, placement.matrix());
+    try {
+        buildEmission(vol, emitting, settings);
+    } catch (const Error& e) {
+        r.fail(r.has("emission") ? "emission" : "grids", e.what());
+    }
     if (r.has("medium")) vol.medium = readMedium(ObjectReader(r.doc(), r.child("medium"), "medium", {"absorb", "scatter", "g"}));
     computeStatistics(vol);
     if (r.has("transfer_function")) {
@@ -283,7 +377,7 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
     scene.source = path;
     if (top.has("volumes"))
         forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
-            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "procedural", "resolution", "seed", "transfer_function", "medium", "translate", "rotate", "scale"}), baseDir, frame));
+            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "grids", "emission", "procedural", "resolution", "seed", "transfer_function", "medium", "translate", "rotate", "scale"}), baseDir, frame));
         });
     if (top.has("meshes"))
         forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) {
@@ -316,11 +410,18 @@ Scene sceneAroundVolume(Volume vol, const std::string& source, double aspect) {
     return scene;
 }
 
+// Density, temperature and emission by their conventional names
+// (core/volume/volume_grids.hpp), at the default emission settings.
 Scene loadBareVdb(const std::string& path, double aspect, const std::string& gridName) {
     Volume vol;
     vol.source = path;
-    vol.grid = readFloatGrid(path, gridName);
+    requireRegularFile(path, "volume");
+    const std::map<std::string, std::string> names = pickConventionalGrids(path, gridName);
+    vol.grid = readFloatGrid(path, names.at("density"));
     vol.name = vol.grid->getName();
+    vol.grids = "density=" + vol.name;
+    buildEmission(vol, readEmissionGrids(vol, names, {}, path), EmissionSettings{});
+    vol.gridsPicked = names.size() > 1;
     computeStatistics(vol);
     vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
     return sceneAroundVolume(std::move(vol), path, aspect);
@@ -379,6 +480,13 @@ std::string lowerExtension(const std::string& path) {
 
 const char* builtinSceneNames() {
     return "builtin:cloud|builtin:sphere|builtin:zoneplate|builtin:grating|builtin:checker|builtin:siemens|builtin:lines|builtin:disc";
+}
+
+void requireNoEmission(const Scene& scene, const std::string& technique) {
+    for (const Volume& v : scene.volumes)
+        if (v.emission)
+            throw Error(technique + " does not render volume emission; volume '" + v.source + "' emits (" + v.grids +
+                        "): render it with volume.raymarch, volume.singlescatter or mesh.pathtrace");
 }
 
 Camera Scene::cameraAt(double u) const {

@@ -1,5 +1,5 @@
 #pragma once
-// Trilinear lookups of a float grid: openvdb::tools::BoxSampler's eight
+// Trilinear lookups of a float (or Vec3s) grid: openvdb::tools::BoxSampler's eight
 // values and interpolation order (z, then y, then x), in float arithmetic,
 // with the values read straight from the leaves that hold them. The leaf of
 // the last lookup and, once a cell straddles into them, its seven
@@ -15,34 +15,36 @@
 
 namespace weft {
 
-class LeafSampler {
+template <class GridT>
+class BasicLeafSampler {
 public:
-    using Accessor = openvdb::FloatGrid::ConstAccessor;
+    using Accessor = typename GridT::ConstAccessor;
+    using Value = typename GridT::ValueType;
 
     // Reads through `accessor` and maps world points with `transform`; both must outlive the sampler.
-    LeafSampler(const Accessor& accessor, const openvdb::math::Transform& transform) : acc_(&accessor), xf_(&transform) {}
+    BasicLeafSampler(const Accessor& accessor, const openvdb::math::Transform& transform) : acc_(&accessor), xf_(&transform) {}
 
     // At an index-space point.
-    float isSample(const openvdb::Vec3d& p) {
+    Value isSample(const openvdb::Vec3d& p) {
         const int ix = floorToInt(p.x()), iy = floorToInt(p.y()), iz = floorToInt(p.z());
         const double fx = ix, fy = iy, fz = iz;
         const openvdb::Coord origin(ix & ~7, iy & ~7, iz & ~7);
         if (origin != origin_) moveTo(origin);
         const int lx = ix & 7, ly = iy & 7, lz = iz & 7;
-        float v[2][2][2];
+        Value v[2][2][2];
         if (lx != 7 && ly != 7 && lz != 7) fromLeaf(lx << 6 | ly << 3 | lz, v);
         else fromBlock(lx, ly, lz, v);  // the cell straddles leaves
         return trilinear(v, float(p.x() - fx), float(p.y() - fy), float(p.z() - fz));
     }
     // At a world-space point.
-    float wsSample(const openvdb::Vec3d& p) { return isSample(xf_->worldToIndex(p)); }
+    Value wsSample(const openvdb::Vec3d& p) { return isSample(xf_->worldToIndex(p)); }
 
 private:
     // One 8^3 region: a leaf's values, or the one tile (or background) value covering it.
     struct Region {
-        const float* data = nullptr;
-        float constant = 0.0f;
-        float at(int offset) const { return data ? data[offset] : constant; }
+        const Value* data = nullptr;
+        Value constant = openvdb::zeroVal<Value>();
+        Value at(int offset) const { return data ? data[offset] : constant; }
     };
 
     // std::floor is a libm call on baseline x86-64 (no SSE4.1 round);
@@ -52,8 +54,8 @@ private:
         const int i = int(x);
         return i - (x < double(i));
     }
-    static float lerp(float a, float b, float w) { return a + (b - a) * w; }
-    static float trilinear(const float (&v)[2][2][2], float u, float s, float t) {
+    static Value lerp(const Value& a, const Value& b, float w) { return a + (b - a) * w; }
+    static Value trilinear(const Value (&v)[2][2][2], float u, float s, float t) {
         return lerp(lerp(lerp(v[0][0][0], v[0][0][1], t), lerp(v[0][1][0], v[0][1][1], t), s),
                     lerp(lerp(v[1][0][0], v[1][0][1], t), lerp(v[1][1][0], v[1][1][1], t), s), u);
     }
@@ -77,18 +79,18 @@ private:
         return region_[j];
     }
 
-    void fromLeaf(int n, float (&v)[2][2][2]) const {  // n: LeafNode::coordToOffset of the cell's low corner
+    void fromLeaf(int n, Value (&v)[2][2][2]) const {  // n: LeafNode::coordToOffset of the cell's low corner
         const Region& r = region_[0];
         if (!r.data) {
             for (auto& plane : v)
                 for (auto& row : plane) row[0] = row[1] = r.constant;
             return;
         }
-        const float* d = r.data;
+        const Value* d = r.data;
         v[0][0][0] = d[n], v[0][0][1] = d[n + 1], v[0][1][0] = d[n + 8], v[0][1][1] = d[n + 9];
         v[1][0][0] = d[n + 64], v[1][0][1] = d[n + 65], v[1][1][0] = d[n + 72], v[1][1][1] = d[n + 73];
     }
-    void fromBlock(int lx, int ly, int lz, float (&v)[2][2][2]) {
+    void fromBlock(int lx, int ly, int lz, Value (&v)[2][2][2]) {
         // Per axis: the low and high corner's region step (0 or 1) and offset in it.
         const int sx = lx == 7, sy = ly == 7, sz = lz == 7;
         const int ox[2] = {lx << 6, sx ? 0 : (lx + 1) << 6}, oy[2] = {ly << 3, sy ? 0 : (ly + 1) << 3},
@@ -106,5 +108,9 @@ private:
     Region region_[8];                                 // the leaf at origin_ + 8 (dx, dy, dz), j = dx<<2 | dy<<1 | dz
     unsigned probed_ = 0;
 };
+
+using LeafSampler = BasicLeafSampler<openvdb::FloatGrid>;
+// A volume's emission (radiance per voxel length, RGB).
+using Vec3LeafSampler = BasicLeafSampler<openvdb::Vec3SGrid>;
 
 }  // namespace weft

@@ -63,6 +63,23 @@ openvdb::FloatGrid::Ptr densityBricks(const openvdb::FloatGrid& grid) {
     return bricks;
 }
 
+// 1 in every brick whose voxels (or a neighbour brick's) emit.
+openvdb::FloatGrid::Ptr emissiveBricks(const openvdb::Vec3SGrid& emission) {
+    auto raw = openvdb::FloatGrid::create(0.0f), bricks = openvdb::FloatGrid::create(0.0f);
+    auto rawAcc = raw->getAccessor(), acc = bricks->getAccessor();
+    for (auto it = emission.tree().cbeginValueOn(); it; ++it) {
+        if (*it == openvdb::Vec3s(0.0f)) continue;
+        const openvdb::CoordBBox box = it.getBoundingBox();
+        const openvdb::CoordBBox bb(brickOf(box.min()), brickOf(box.max()));
+        for (auto c = bb.begin(); c; ++c) rawAcc.setValue(*c, 1.0f);
+    }
+    for (auto it = raw->cbeginValueOn(); it; ++it)
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) acc.setValue(it.getCoord().offsetBy(dx, dy, dz), 1.0f);
+    return bricks;
+}
+
 }  // namespace
 
 Medium::Medium(const std::vector<Volume>& volumes) {
@@ -71,8 +88,9 @@ Medium::Medium(const std::vector<Volume>& volumes) {
         const double perWorld = 1.0 / v.voxelLength();
         Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0, nullptr};
         e.coefficientMax = maxChannel(e.absorb + e.scatter);
-        if (!(e.coefficientMax > 0)) continue;  // nothing to meet
+        if (!(e.coefficientMax > 0) && !v.emission) continue;  // nothing to meet
         e.bricks = densityBricks(*v.grid);
+        if (v.emission) e.emissiveBricks = emissiveBricks(*v.emission), e.emissionRate = perWorld;
         volumes_.push_back(e);
     }
     if (volumes_.size() < 2) return;
@@ -85,9 +103,23 @@ MediumRay::MediumRay(const Medium& medium) : medium_(medium) {
     for (const auto& e : medium.volumes_) {
         accessors_.push_back(e.volume->grid->getConstAccessor());
         brickAccessors_.push_back(e.bricks->getConstAccessor());
+        emissionAccessors_.emplace_back();
+        if (e.volume->emission) emissionAccessors_.back().emplace(e.volume->emission->getConstAccessor());
     }
-    for (std::size_t i = 0; i < accessors_.size(); ++i)  // after the last push_back: they point into accessors_
+    for (std::size_t i = 0; i < accessors_.size(); ++i) {  // after the last push_back: they point into the accessors
         samplers_.emplace_back(accessors_[i], medium.volumes_[i].volume->grid->transform());
+        emissionSamplers_.emplace_back();
+        if (emissionAccessors_[i]) emissionSamplers_.back().emplace(*emissionAccessors_[i], medium.volumes_[i].volume->emission->transform());
+    }
+}
+
+// The segment's current brick: its density bound times the largest
+// coefficient, raised to the emission floor where the brick emits.
+double MediumRay::brickMajorant(const MediumSegment& s) {
+    const Medium::Entry& e = medium_.volumes_[s.volume];
+    const double m = brickAccessors_[s.volume].getValue(s.brick) * e.coefficientMax;
+    if (!e.emissiveBricks || !(e.emissiveBricks->tree().getValue(s.brick) > 0)) return m;
+    return std::max(m, e.emissionRate);
 }
 
 // Amanatides-Woo in brick coordinates, parametrised by world distance.
@@ -101,7 +133,7 @@ void MediumRay::startBricks(MediumSegment& s) {
         else s.crossing[a] = s.crossingStep[a] = std::numeric_limits<double>::infinity();
     }
     s.exit = std::min({s.crossing[0], s.crossing[1], s.crossing[2], s.t1});
-    s.majorant = brickAccessors_[s.volume].getValue(s.brick) * medium_.volumes_[s.volume].coefficientMax;
+    s.majorant = brickMajorant(s);
 }
 
 void MediumRay::nextBrick(MediumSegment& s) {
@@ -109,7 +141,7 @@ void MediumRay::nextBrick(MediumSegment& s) {
     s.brick[a] += s.indexStep[a] > 0 ? 1 : -1;
     s.crossing[a] += s.crossingStep[a];
     s.exit = std::min({s.crossing[0], s.crossing[1], s.crossing[2], s.t1});
-    s.majorant = brickAccessors_[s.volume].getValue(s.brick) * medium_.volumes_[s.volume].coefficientMax;
+    s.majorant = brickMajorant(s);
 }
 
 void MediumRay::reset(const Vec3d& origin, const Vec3d& dir, double tMax) {
@@ -163,6 +195,7 @@ MediumCoefficients MediumRay::at(double t) {
         const Vec3d scatter = e.scatter * rho;
         c.extinction += e.absorb * rho + scatter;
         c.scattering += scatter;
+        if (emissionSamplers_[s.volume]) c.emission += toVec3d(emissionSamplers_[s.volume]->isSample(ijk)) * e.emissionRate;
         lobes_.push_back({e.volume->medium.g, scatter});
     }
     c.g = lobes_.size() == 1 ? lobes_[0].g : 0.0;
@@ -257,8 +290,10 @@ Vec3d deltaTrackingTransmittance(MediumRay& ray, Rng& rng, std::int64_t& collisi
 
 FreeFlight sampleFreeFlight(MediumRay& ray, Rng& rng, Vec3d& throughput, std::int64_t& collisions) {
     FreeFlight flight;
+    Vec3d emitted(0.0);
     const bool done = trackCollisions(ray, rng, collisions, [&](double t, double m) {
         const MediumCoefficients c = ray.at(t);
+        emitted += throughput * c.emission / m;
         Vec3d nullSigma(0.0);
         for (int k = 0; k < 3; ++k) nullSigma[k] = std::max(0.0, m - c.extinction[k]);
         const double ps = mean(abs3(throughput * c.scattering)), pn = mean(abs3(throughput * nullSigma));
@@ -274,6 +309,7 @@ FreeFlight sampleFreeFlight(MediumRay& ray, Rng& rng, Vec3d& throughput, std::in
         return true;
     });
     if (!done) throughput = Vec3d(0.0);
+    flight.emitted = emitted;
     return flight;
 }
 

@@ -15,8 +15,11 @@
 // one voxel across), times the largest channel coefficient, walked along
 // the ray by a 3D DDA. Thin and empty regions get small or zero majorants,
 // so they cost few or no collisions; the bound holds everywhere, so
-// tracking stays unbiased.
+// tracking stays unbiased. Where a volume emits, a brick's majorant is at
+// least one collision per voxel length, so emission is met even where the
+// density is zero (see sampleFreeFlight).
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -32,6 +35,7 @@ namespace weft {
 struct MediumCoefficients {
     Vec3d extinction{0.0};
     Vec3d scattering{0.0};
+    Vec3d emission{0.0};  // emitted radiance per unit world length
     double g = 0;  // Henyey-Greenstein anisotropy (see FreeFlight where volumes overlap)
 };
 
@@ -85,8 +89,12 @@ private:
     void startBricks(MediumSegment& s);
     void nextBrick(MediumSegment& s);
 
+    double brickMajorant(const MediumSegment& s);
+
     std::vector<openvdb::FloatGrid::ConstAccessor> accessors_, brickAccessors_;
     std::vector<LeafSampler> samplers_;  // through accessors_ (a move keeps their addresses)
+    std::vector<std::optional<openvdb::Vec3SGrid::ConstAccessor>> emissionAccessors_;
+    std::vector<std::optional<Vec3LeafSampler>> emissionSamplers_;  // through emissionAccessors_
     void addSegment(std::uint32_t volume, const Vec3d& origin, const Vec3d& dir, double tMax);
 
     std::vector<MediumSegment> segments_;
@@ -113,6 +121,8 @@ private:
         Vec3d absorb, scatter;  // per world length per unit density
         double coefficientMax;  // largest channel of absorb + scatter
         openvdb::FloatGrid::Ptr bricks;  // per brick: density bound (see above)
+        openvdb::FloatGrid::Ptr emissiveBricks;  // per brick: 1 where it (or a neighbour) emits; null: no emission
+        double emissionRate = 0;                 // the majorant's floor there, per world length
     };
     std::vector<Entry> volumes_;  // non-empty volumes only
     VolumeBvh bvh_;               // of their world boxes, with two or more
@@ -141,10 +151,14 @@ Vec3d deltaTrackingTransmittance(MediumRay& ray, Rng& rng, std::int64_t& collisi
 // (majorant - sigma_t); absorption is folded into the weights, so each
 // channel's estimate is unbiased (Kutz et al. 2017, spectral tracking).
 // Where volumes overlap, the phase function is picked by pickPhase.
+// Emission is gathered on the way: every tentative collision adds
+// throughput x emission / majorant, an unbiased estimate of the
+// transmittance-weighted emission up to the scattering point (or the end).
 struct FreeFlight {
     bool scattered = false;  // else the ray reached ray.end() (or died: weight 0)
     double t = 0;
     MediumCoefficients coefficients;  // at the scattering point
+    Vec3d emitted{0.0};               // throughput-weighted emission met before it
 };
 FreeFlight sampleFreeFlight(MediumRay& ray, Rng& rng, Vec3d& throughput, std::int64_t& collisions);
 

@@ -68,17 +68,30 @@ double ctDensity(std::uint64_t seed, const Vec3d& p) {
     return 0.3 * (0.85 + 0.15 * fbm(seed, p * 12.0));    // soft tissue
 }
 
-}  // namespace
+// A flame rising along +y from the bottom of the cube: a noisy cone of
+// heat (0..1) whose soot (density) thickens into smoke above it.
+double flameHeat(std::uint64_t seed, const Vec3d& p) {
+    const double h = p.y() + 0.5;  // 0 at the bottom, 1 at the top
+    const double n = fbm(seed + 5, Vec3d(p.x() * 6.0, p.y() * 2.5 - 1.7, p.z() * 6.0));  // tongues: stretched along y
+    const double radius = 0.2 * (1.0 - 0.8 * h) + 0.14 * n, r = std::hypot(p.x(), p.z());
+    if (h > 0.85 || r >= radius) return 0.0;
+    const double flicker = 0.7 + 0.6 * fbm(seed + 6, p * 9.0);
+    return std::clamp((1.0 - r / radius) * (1.0 - h / 0.85) * 1.6 * flicker, 0.0, 1.0);
+}
 
-const char* proceduralKinds() { return "sphere|cloud|ct"; }
+double fireDensity(std::uint64_t seed, const Vec3d& p) {
+    const double h = p.y() + 0.5;
+    const double n = std::clamp(0.5 + 0.9 * fbm(seed + 9, p * 6.0), 0.0, 1.0);
+    const double radius = 0.12 + 0.2 * h + 0.12 * fbm(seed + 10, p * 3.0), r = std::hypot(p.x(), p.z());
+    const double smoke = r < radius ? std::clamp((h - 0.3) * 2.0, 0.0, 1.0) * (1.0 - r / radius) * n : 0.0;
+    return std::max(smoke, 0.15 * flameHeat(seed, p));  // a thin soot in the flame itself
+}
 
-openvdb::FloatGrid::Ptr makeProceduralGrid(const std::string& kind, int res, std::uint64_t seed) {
-    initVdb();
-    if (kind != "sphere" && kind != "cloud" && kind != "ct")
-        throw Error("unknown procedural volume '" + kind + "' (known: " + proceduralKinds() + ")");
+template <class Field>
+openvdb::FloatGrid::Ptr sampleGrid(const std::string& name, int res, const Field& field) {
     if (res < 4 || res > 1024) throw Error("procedural volume resolution " + std::to_string(res) + " is outside [4, 1024]");
     auto grid = openvdb::FloatGrid::create(0.0f);
-    grid->setName("density");
+    grid->setName(name);
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
     const double voxel = 1.0 / res;
     grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
@@ -87,11 +100,31 @@ openvdb::FloatGrid::Ptr makeProceduralGrid(const std::string& kind, int res, std
     for (int z = -half; z < half; ++z)
         for (int y = -half; y < half; ++y)
             for (int x = -half; x < half; ++x) {
-                const Vec3d p(x * voxel, y * voxel, z * voxel);
-                const double d = kind == "sphere" ? sphereDensity(p) : kind == "ct" ? ctDensity(seed, p) : cloudDensity(seed, p);
+                const double d = field(Vec3d(x * voxel, y * voxel, z * voxel));
                 if (d > 0) acc.setValue(openvdb::Coord(x, y, z), float(d));
             }
     return grid;
+}
+
+}  // namespace
+
+const char* proceduralKinds() { return "sphere|cloud|ct|fire"; }
+
+openvdb::FloatGrid::Ptr makeProceduralGrid(const std::string& kind, int res, std::uint64_t seed) {
+    initVdb();
+    if (kind == "sphere") return sampleGrid("density", res, [](const Vec3d& p) { return sphereDensity(p); });
+    if (kind == "cloud") return sampleGrid("density", res, [&](const Vec3d& p) { return cloudDensity(seed, p); });
+    if (kind == "ct") return sampleGrid("density", res, [&](const Vec3d& p) { return ctDensity(seed, p); });
+    if (kind == "fire") return sampleGrid("density", res, [&](const Vec3d& p) { return fireDensity(seed, p); });
+    throw Error("unknown procedural volume '" + kind + "' (known: " + proceduralKinds() + ")");
+}
+
+openvdb::FloatGrid::Ptr makeProceduralTemperature(int res, std::uint64_t seed) {
+    initVdb();
+    return sampleGrid("temperature", res, [&](const Vec3d& p) {
+        const double heat = flameHeat(seed, p);
+        return heat > 0 ? 700.0 + 1300.0 * heat : 0.0;  // Kelvin: a dull red rim to a yellow-white core
+    });
 }
 
 }  // namespace weft

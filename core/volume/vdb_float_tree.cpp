@@ -30,14 +30,14 @@ public:
     FloatTreeWalk(Walker& w, const FloatTreeFormat& f) : w_(w), f_(f) {}
 
     void run() {
-        w_.value<float>("background value");
+        w_.skip(valueBytes(), "background value");
         const std::uint32_t tiles = w_.value<std::uint32_t>("root tile count");
         const std::uint32_t children = w_.value<std::uint32_t>("root child count");
-        // A tile is a coordinate, a value and a flag (17 bytes), a child a
-        // coordinate and at least its two 4096-byte node masks.
+        // A tile is a coordinate, a value and a flag, a child a coordinate
+        // and at least its two 4096-byte node masks.
         const std::uint64_t end = f_.topologyEnd.value_or(w_.size());
         const std::uint64_t room = end > w_.pos() ? end - w_.pos() : 0;
-        if (std::uint64_t(tiles) * 17 + std::uint64_t(children) * (12 + 8192) > room)
+        if (std::uint64_t(tiles) * (13 + valueBytes()) + std::uint64_t(children) * (12 + 8192) > room)
             w_.corrupt(std::to_string(tiles) + " root tiles and " + std::to_string(children) +
                        " children do not fit in the " + std::to_string(room) + " bytes of the grid's topology");
         // RootNode keeps its table in a map: a later entry at the same
@@ -46,7 +46,7 @@ public:
         std::vector<std::pair<std::size_t, std::size_t>> leavesOf{{0, 0}};  // entry 0: a tile
         for (std::uint32_t i = 0; i < tiles; ++i) {
             const auto origin = coordinate("root tile origin");
-            w_.skip(4, "root tile value");
+            w_.skip(valueBytes(), "root tile value");
             // Read into a bool: any byte but 0 or 1 is undefined behaviour.
             if (const auto active = w_.value<std::uint8_t>("root tile flag"); active > 1)
                 w_.corrupt("root tile flag " + std::to_string(active) + " (not 0 or 1)");
@@ -67,6 +67,10 @@ public:
     }
 
 private:
+    // One value as it is held in memory (float or Vec3s), and as a chunk stores it.
+    std::uint64_t valueBytes() const { return 4u * f_.components; }
+    std::uint64_t storedBytes(bool half) const { return (half ? 2u : 4u) * f_.components; }
+
     // A root entry spans 4096^3 voxels from its origin; OpenVDB and weft add
     // to coordinates (node extents, bounding boxes), so an origin near the
     // int limits overflows. Real grids sit far inside +-2^30.
@@ -101,13 +105,13 @@ private:
     void values(std::uint64_t count, const std::uint64_t* mask, std::size_t words, bool half) {
         std::int8_t flag = kAllValues;
         if (f_.version >= kNodeMaskCompression) flag = w_.value<std::int8_t>("node compression flag");
-        if (flag == kNoMaskOneInactive || flag == kMaskOneInactive || flag == kMaskTwoInactive) w_.skip(4, "inactive value");
-        if (flag == kMaskTwoInactive) w_.skip(4, "second inactive value");
+        if (flag == kNoMaskOneInactive || flag == kMaskOneInactive || flag == kMaskTwoInactive) w_.skip(valueBytes(), "inactive value");
+        if (flag == kMaskTwoInactive) w_.skip(valueBytes(), "second inactive value");
         if (flag == kMaskNoInactive || flag == kMaskOneInactive || flag == kMaskTwoInactive) w_.skip(words * 8, "selection mask");
         if ((f_.compression & kActiveMask) && flag != kAllValues && f_.version >= kNodeMaskCompression)
             count = countOn(mask, words);
         if (half && count == 0) return;  // HalfReader reads nothing then
-        chunk(count * (half ? 2 : 4), f_.compression);
+        chunk(count * storedBytes(half), f_.compression);
     }
 
     // InternalNode::readTopology of a node of 2^(3 log2Dim) entries; its
@@ -126,7 +130,7 @@ private:
         if (f_.version < kInternalNodeCompression) {  // values stored between the children
             for (std::size_t i = 0; i < entries; ++i)
                 if (childMask[i / 64] >> (i % 64) & 1) child(false);  // read without fromHalf then
-                else w_.skip(4, "internal node value");
+                else w_.skip(valueBytes(), "internal node value");
             return;
         }
         const std::uint64_t count = f_.version < kNodeMaskCompression ? entries - countOn(childMask.data(), words) : entries;
@@ -147,7 +151,7 @@ private:
             buffers = w_.value<std::int8_t>("leaf buffer count");
         }
         values(512, m.data(), m.size(), f_.half);
-        for (int i = 1; i < buffers; ++i) chunk(512 * (f_.half ? 2 : 4), f_.compression & kZip);  // older auxiliary buffers
+        for (int i = 1; i < buffers; ++i) chunk(512 * storedBytes(f_.half), f_.compression & kZip);  // older auxiliary buffers
     }
 
     Walker& w_;

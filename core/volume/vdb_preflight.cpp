@@ -96,8 +96,14 @@ struct Descriptor {
     std::string type;
     std::int64_t gridPos = 0, blockPos = 0, endPos = 0;  // all 0 in a file written as a stream
     bool instance = false;
-    bool floatTree() const { return type == "Tree_float_5_4_3" || halfFloat(); }  // the layout walkFloatTree knows
-    bool halfFloat() const { return type == "Tree_float_5_4_3_HalfFloat"; }
+    // The layouts walkFloatTree knows: float and Vec3s values, full or half.
+    bool floatTree() const { return components() > 0; }
+    bool halfFloat() const { return type.ends_with("_HalfFloat"); }
+    int components() const {
+        if (type == "Tree_float_5_4_3" || type == "Tree_float_5_4_3_HalfFloat") return 1;
+        if (type == "Tree_vec3s_5_4_3" || type == "Tree_vec3s_5_4_3_HalfFloat") return 3;
+        return 0;
+    }
 };
 
 // GridDescriptor::read: names, then the three positions.
@@ -125,7 +131,7 @@ bool walkGrid(Walker& w, const Descriptor& d, const FileFormat& file, std::optio
     if (d.instance) return true;  // the parent's tree is walked where it lies
     if (!d.floatTree()) return false;
     w.value<std::int32_t>("tree buffer count");
-    vdbwalk::walkFloatTree(w, {file.version, compression, d.halfFloat(), topologyEnd});
+    vdbwalk::walkFloatTree(w, {file.version, compression, d.halfFloat(), d.components(), topologyEnd});
     return true;
 }
 

@@ -280,7 +280,7 @@ TEST_F(VdbPreflight, BloscHeaderOfAnotherSizeIsRefused) {
 }
 
 // Written as a stream, a file has no grid offsets and OpenVDB reads all of
-// its grids to find one: float grids are walked, others refused.
+// its grids to find one: float and vec3s grids are walked, others refused.
 TEST_F(VdbPreflight, StreamedFilesAreWalkedGridByGrid) {
     const auto write = [&](const openvdb::GridPtrVec& grids) {
         {
@@ -294,8 +294,31 @@ TEST_F(VdbPreflight, StreamedFilesAreWalkedGridByGrid) {
     EXPECT_EQ(readFloatGrid((dir / "stream.vdb").string(), "surface")->activeVoxelCount(), grids[1]->activeVoxelCount());
     auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0));
     velocity->setName("vel");
-    const std::string v = verdict(write({grids[0], velocity}));
-    EXPECT_NE(v.find("written as a stream (no grid offsets) and holds a Tree_vec3s_5_4_3 grid"), std::string::npos) << v;
+    velocity->tree().setValue(openvdb::Coord(3, 4, 5), openvdb::Vec3s(1, 2, 3));
+    velocity->tree().addTile(1, openvdb::Coord(128, 0, 0), openvdb::Vec3s(0, 1, 0), true);
+    EXPECT_EQ(verdict(write({grids[0], velocity})), "");
+    auto labels = openvdb::Int32Grid::create(0);
+    labels->setName("labels");
+    const std::string v = verdict(write({grids[0], labels}));
+    EXPECT_NE(v.find("written as a stream (no grid offsets) and holds a Tree_int32_5_4_3 grid"), std::string::npos) << v;
+}
+
+// Vec3s trees (velocity, colour) are walked like float ones, three floats a
+// value, full or half precision; a cut chunk is caught in them too.
+TEST_F(VdbPreflight, Vec3sTreesAreWalked) {
+    auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0));
+    velocity->setName("vel");
+    for (int i = 0; i < 40; ++i) velocity->tree().setValue(openvdb::Coord(i * 3, i % 7, -i), openvdb::Vec3s(float(i), 1, -2));
+    velocity->tree().addTile(2, openvdb::Coord(0, 1024, 0), openvdb::Vec3s(0, 1, 0), true);
+    for (const bool half : {false, true}) {
+        velocity->setSaveFloatAsHalf(half);
+        openvdb::io::File file((dir / "vel.vdb").string());
+        file.write({velocity});
+        file.close();
+        const std::string bytes = test::readBytes(dir / "vel.vdb");
+        EXPECT_EQ(verdict(bytes), "") << (half ? "half" : "float");
+        EXPECT_NE(verdict(bytes.substr(0, bytes.size() - 40)), "") << "a cut file passed, " << (half ? "half" : "float");
+    }
 }
 
 // Only float grids are handed to OpenVDB's tree reader.

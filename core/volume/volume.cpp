@@ -39,6 +39,14 @@ openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid) {
     return copy;
 }
 
+openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume) {
+    if (!volume.emission) return indexSpaceGrid(*volume.grid);
+    openvdb::FloatGrid::Ptr both = volume.grid->deepCopy();
+    both->tree().topologyUnion(volume.emission->tree());
+    both->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
+    return both;
+}
+
 openvdb::CoordBBox Volume::indexBox() const {
     openvdb::CoordBBox box = activeBox;
     if (box.empty()) return box;  // expanding the empty box would overflow
@@ -59,7 +67,7 @@ BBoxd Volume::worldBox() const {
     return worldBoxOf(grid->transform(), ib.min().asVec3d() - Vec3d(0.5), ib.max().asVec3d() + Vec3d(0.5));
 }
 
-openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName) {
+openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName, const std::string& role) {
     initVdb();
     requireRegularFile(path, "volume");
     preflightVdb(path);  // lengths and counts OpenVDB would trust
@@ -75,34 +83,40 @@ openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string
         if (gridName.empty() && (chosen.empty() || it.gridName() == "density")) chosen = it.gridName();
     }
     if (!gridName.empty()) chosen = gridName;
+    const std::string what = (role.empty() ? "grid '" : "the " + role + " grid '") + chosen + "'";
     if (chosen.empty() || !file.hasGrid(chosen))
-        throw Error("volume '" + path + "': no grid named '" + chosen + "' (grids: " + (names.empty() ? "none" : names) + ")");
+        throw Error("volume '" + path + "': no grid named '" + chosen + "'" + (role.empty() ? "" : " for " + role) +
+                    " (grids: " + (names.empty() ? "none" : names) + ")");
     // The type and transform come first: the preflight walks only float
-    // trees of linear transforms, so no other tree is handed to OpenVDB.
+    // and vec3s trees of linear transforms, so no other tree is handed to OpenVDB.
     openvdb::GridBase::Ptr header;
     try {
         header = file.readGridMetadata(chosen);
     } catch (const std::exception&) {
-        throw Error("volume '" + path + "': grid '" + chosen + "' cannot be read: the file is corrupt or cut short");
+        throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt or cut short");
     }
     if (!openvdb::gridPtrCast<openvdb::FloatGrid>(header))
-        throw Error("volume '" + path + "': grid '" + chosen + "' holds " + header->valueType() + " values; weft renders float grids");
-    if (!header->transform().isLinear()) throw Error("volume '" + path + "': grid '" + chosen + "' has a non-linear (frustum) transform, which weft does not support");
+        throw Error("volume '" + path + "': " + what + " holds " + header->valueType() + " values; " +
+                    (role.empty() ? "weft renders float grids" : role + " needs a float grid"));
+    if (!role.empty() && header->getGridClass() == openvdb::GRID_LEVEL_SET)
+        throw Error("volume '" + path + "': " + what + " is a level set; " + role + " needs a fog volume (convert it with vdb_tool or OpenVDB's sdfToFogVolume)");
+    if (!header->transform().isLinear()) throw Error("volume '" + path + "': " + what + " has a non-linear (frustum) transform, which weft does not support");
     openvdb::GridBase::Ptr base;
     try {
         base = file.readGrid(chosen);
     } catch (const std::bad_alloc&) {
-        throw Error("volume '" + path + "': grid '" + chosen + "' does not fit in memory (or its header is corrupt)");
+        throw Error("volume '" + path + "': " + what + " does not fit in memory (or its header is corrupt)");
     } catch (const std::exception&) {
-        throw Error("volume '" + path + "': grid '" + chosen + "' cannot be read: the file is corrupt or cut short");
+        throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt or cut short");
     }
     auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    if (!grid) throw Error("volume '" + path + "': grid '" + chosen + "' cannot be read: the file is corrupt");
+    if (!grid) throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt");
     return grid;
 }
 
 void computeStatistics(Volume& volume) {
     volume.activeBox = volume.grid->evalActiveVoxelBoundingBox();
+    if (volume.emission) volume.activeBox.expand(volume.emission->evalActiveVoxelBoundingBox());  // an empty box expands to the other
     if (volume.grid->activeVoxelCount() == 0 && volume.grid->tree().activeTileCount() == 0) {
         volume.valueMin = volume.valueMax = volume.grid->background();
         return;

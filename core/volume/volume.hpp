@@ -27,9 +27,15 @@ struct Volume {
     std::string name;    // grid name
     std::string source;  // file path or "procedural:<kind>"
     openvdb::FloatGrid::ConstPtr grid;
+    // Emitted radiance per voxel length (RGB, scene-linear) in the density's
+    // index space, from the temperature and emission grids
+    // (core/volume/volume_grids.hpp); null when the volume emits nothing.
+    openvdb::Vec3SGrid::ConstPtr emission;
+    std::string grids;         // what each role read: "density=density temperature=heat"
+    bool gridsPicked = false;  // a bare .vdb's roles, found by their conventional names
     TransferFunction tf;
     float valueMin = 0, valueMax = 0;      // over active values
-    openvdb::CoordBBox activeBox;          // active voxels' bounding box (empty() when none)
+    openvdb::CoordBBox activeBox;          // active voxels' bounding box, of density and emission (empty() when none)
     VolumeMedium medium;
 
     // No active voxel and no active tile: renders as nothing at once.
@@ -55,16 +61,20 @@ openvdb::FloatGrid::ConstPtr placeGrid(const openvdb::FloatGrid::ConstPtr& grid,
 // need uniform voxels, so they march index-space rays through this copy,
 // which works for any affine (anisotropic, rotated, sheared) transform.
 openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid);
+// indexSpaceGrid of the density, whose active voxels also cover the
+// emission's where the volume emits: what an intersector must not skip.
+openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume);
 
 // Calls openvdb::initialize() once.
 void initVdb();
 
 // Reads one float grid. gridName empty: "density" if present, else the first
-// float grid. Errors name the file and list the grids it holds.
-openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName);
+// float grid. Errors name the file and list the grids it holds; with a role
+// ("temperature") they name it too, and a level set is refused for it.
+openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName, const std::string& role = "");
 
-// Fills the value range and the active bounding box (once per volume: both
-// walk the whole tree).
+// Fills the value range (of the density) and the active bounding box (of
+// density and emission); once per volume: both walk the whole tree.
 void computeStatistics(Volume& volume);
 
 // Procedural grids (deterministic), sized res^3 voxels, voxel size 1/res so
@@ -73,7 +83,11 @@ void computeStatistics(Volume& volume);
 //   "cloud":  a sphere displaced and modulated by fractal value noise
 //   "ct":     a CT-like phantom: soft tissue, a vessel with an open lumen
 //             along x, a bone-like shell (normalised attenuation, 0..1)
+//   "fire":   soot and smoke over a flame rising along +y; its temperature
+//             grid (Kelvin, 700 K at the flame's rim to 2000 K in its core)
+//             comes from makeProceduralTemperature
 openvdb::FloatGrid::Ptr makeProceduralGrid(const std::string& kind, int res, std::uint64_t seed);
-const char* proceduralKinds();  // "sphere|cloud|ct", for error messages
+openvdb::FloatGrid::Ptr makeProceduralTemperature(int res, std::uint64_t seed);
+const char* proceduralKinds();  // "sphere|cloud|ct|fire", for error messages
 
 }  // namespace weft

@@ -240,6 +240,8 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     char stage[160];
     std::snprintf(stage, sizeof stage, "%s at %dx%d", name.c_str(), ctx.settings.width, ctx.settings.height);
     auto technique = inStage(stage, [&] { return info.create(scene, params); });
+    for (const Volume& v : scene.volumes)
+        if (v.gridsPicked) std::fprintf(stderr, "weft: %s: grids found by their names: %s\n", v.source.c_str(), v.grids.c_str());
 
     RenderOutcome out;
     {
@@ -255,6 +257,8 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     out.counters = ctx.counters.merged();
     out.metadata = metadataFor(q, name, params, ctx.settings, out.counters);
     if (r.frame) out.metadata.emplace_back("weft:frame", std::to_string(*r.frame));
+    for (std::size_t i = 0; i < scene.volumes.size(); ++i)  // what each role of an emitting volume read
+        if (scene.volumes[i].emission) out.metadata.emplace_back("weft:volume:" + std::to_string(i) + ":grids", scene.volumes[i].grids);
     if (!scene.shutter.instant())
         out.metadata.emplace_back("weft:shutter", formatNumber(scene.shutter.open) + " " + formatNumber(scene.shutter.close));
     if (!r.tile.empty()) addTileMetadata(out.metadata, r.tile, out.window, out.image.width(), out.image.height());

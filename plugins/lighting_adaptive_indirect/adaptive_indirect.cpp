@@ -132,7 +132,10 @@ std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
 
 class AdaptiveIndirect final : public Technique {
 public:
-    AdaptiveIndirect(const Scene& scene, const ParamSet& p) : p_(readParams(p)) { requireMeshLights(scene, "lighting.adaptive_indirect"); }
+    AdaptiveIndirect(const Scene& scene, const ParamSet& p) : p_(readParams(p)) {
+        requireMeshLights(scene, "lighting.adaptive_indirect");
+        requireNoEmission(scene, "lighting.adaptive_indirect");
+    }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;

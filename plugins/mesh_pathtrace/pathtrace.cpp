@@ -89,13 +89,14 @@ ShadowTracking shadowTrackingNamed(const std::string& name) {
     return name == "ratio" ? ShadowTracking::Ratio : ShadowTracking::Delta;
 }
 
-// Meshes keep their light rules; a volume-only scene has no emitters, so it
-// needs a point or directional light.
+// Meshes keep their light rules; a volume-only scene needs a point or
+// directional light unless a volume emits.
 void requireLights(const Scene& scene) {
     if (!scene.meshes.empty() || scene.volumes.empty()) return requireMeshLights(scene, "mesh.pathtrace");
     for (const Light& l : scene.lights)
         if (l.type == LightType::Environment) throw Error("mesh.pathtrace does not support environment lights (use point, directional or emissive materials)");
-    if (scene.lights.empty())
+    const bool glows = std::any_of(scene.volumes.begin(), scene.volumes.end(), [](const Volume& v) { return bool(v.emission); });
+    if (scene.lights.empty() && !glows)
         throw Error("mesh.pathtrace: the scene '" + scene.source + "' has volumes but no light (add a point or directional light)");
 }
 
@@ -234,6 +235,7 @@ private:
             const SurfaceHit hit = accel.intersect(o, d, 0.0f, std::numeric_limits<float>::infinity());
             row.flight.reset(toVec3d(o), toVec3d(d), hit.valid() ? double(hit.t) : std::numeric_limits<double>::infinity());
             const FreeFlight flight = row.flight.empty() ? FreeFlight{} : sampleFreeFlight(row.flight, rng, beta, row.collisions);
+            out.L += toVec3f(flight.emitted);
             if (vertex == 1 && !hit.valid() && !flight.scattered)  // E[beta] = transmittance per channel
                 out.alpha = std::clamp(1.0f - float((beta[0] + beta[1] + beta[2]) / 3.0), 0.0f, 1.0f);
             if (!(maxChannel(beta) > 0) || (!flight.scattered && !hit.valid())) break;

@@ -70,6 +70,7 @@ public:
         : params_{readSliceParams(p), p.getString("oracle"), int(p.getInt("lmax")), p.getFloat("epsilon")},
           oracle_(oracles().get(params_.oracle)) {
         requireSliceableVolume(scene, "volume.adaptive3d");
+        requireNoEmission(scene, "volume.adaptive3d");
         requireSurfaceLights(scene, "volume.adaptive3d");
     }
 

@@ -86,6 +86,7 @@ public:
     Preint(const Scene& scene, const ParamSet& p)
         : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")), plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         requireSliceableVolume(scene, "volume.preint");
+        requireNoEmission(scene, "volume.preint");
         requireSurfaceLights(scene, "volume.preint");
         if (scene.volumes.size() > std::size_t(kMaxVolumes))
             throw Error("volume.preint renders at most " + std::to_string(kMaxVolumes) + " volumes; the scene has " +

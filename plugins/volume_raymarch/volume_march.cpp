@@ -18,11 +18,23 @@ void mergeInto(TfSample& a, const TfSample& b) {
     a.extinction = e;
 }
 
+// Length-weighted emission of a segment: (1 - exp(-s L)) / s, which tends
+// to L as s L -> 0 (where the quotient would lose its digits).
+float emissionLength(float extinction, float length, float alpha) {
+    const float depth = extinction * length;
+    return depth > 1e-4f ? alpha / extinction : length * (1.0f - 0.5f * depth);
+}
+
+void addEmitting(RayAccumulator& acc, const TfSample& s, float alpha, const openvdb::Vec3s& e, float length) {
+    const float w = emissionLength(s.extinction, length, alpha);
+    acc.addPremultiplied(s.r * alpha + e[0] * w, s.g * alpha + e[1] * w, s.b * alpha + e[2] * w, alpha);
+}
+
 }  // namespace
 
 EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
     for (const Volume& v : volumes) {
-        indexGrids_.push_back(indexSpaceGrid(*v.grid));
+        indexGrids_.push_back(occupancyIndexGrid(v));
         // Trilinear support reaches the 26 neighbours of an active voxel; three
         // face-neighbour dilations cover them all (Manhattan distance <= 3).
         intersectors_.push_back(std::make_unique<VolumeIntersector>(*indexGrids_.back(), 3));
@@ -56,6 +68,10 @@ bool emptySpacePays(const std::vector<Volume>& volumes) {
 VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototype)
     : volume(v), accessor(v.grid->getConstAccessor()), sampler(accessor, v.grid->transform()),
       voxelLength(v.voxelLength()), uniform(v.grid->transform().hasUniformScale()) {
+    if (v.emission) {
+        emissionAccessor.emplace(v.emission->getConstAccessor());
+        emission.emplace(*emissionAccessor, v.emission->transform());
+    }
     if (prototype) hdda.emplace(*prototype);
 }
 
@@ -112,19 +128,42 @@ void VolumeMarcher::collectIntervals(double uEnd) {
 // One segment of `length` march units sampled at u: every volume holding u.
 void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
     TfSample sum{0, 0, 0, 0};
+    openvdb::Vec3s glow(0.0f);  // emission per march unit
     bool any = false;
     for (Crossing& c : crossings_) {
         const double t = u * c.perU;
         if (t < c.ray.t0 || t >= c.ray.t1) continue;
-        const float value = c.lookup->sampler.isSample(c.ray.at(t));
+        const Vec3d p = c.ray.at(t);
+        const float value = c.lookup->sampler.isSample(p);
         ++samples_;
+        if (c.lookup->emission) glow += c.lookup->emission->isSample(p) * c.depthScale;
         TfSample s = c.lookup->volume.tf.lookup(value);
         if (!(s.extinction > 0)) continue;  // adds nothing
         s.extinction *= c.depthScale;
         if (any) mergeInto(sum, s);
         else sum = s, any = true;
     }
-    if (any) acc.add(sum, segmentOpacity(sum.extinction, float(length)));
+    const float alpha = any ? segmentOpacity(sum.extinction, float(length)) : 0.0f;
+    if (glow != openvdb::Vec3s(0.0f)) addEmitting(acc, sum, alpha, glow, float(length));
+    else if (any) acc.add(sum, alpha);
+}
+
+// One emitting volume: addSegment's arithmetic with its lookups hoisted.
+bool VolumeMarcher::marchEmitting(const RayInterval& in, double kMax, float offset, RayAccumulator& acc) {
+    const Crossing& c = crossings_.front();
+    VolumeSampler& sampler = c.lookup->sampler;
+    Vec3LeafSampler& emission = *c.lookup->emission;
+    const TransferFunction& tf = c.lookup->volume.tf;
+    std::int64_t n = 0;
+    const bool more = marchSteps(in, kMax, offset, acc, [&](double u, double h) {
+        const Vec3d p = c.ray.at(u * c.perU);
+        TfSample s = tf.lookup(sampler.isSample(p));
+        s.extinction = std::max(s.extinction, 0.0f) * c.depthScale;
+        ++n;
+        addEmitting(acc, s, segmentOpacity(s.extinction, float(h)), emission.isSample(p) * c.depthScale, float(h));
+    });
+    samples_ += n;
+    return more;
 }
 
 // Samples u_k = u0 + (k + offset) * step for k < kMax inside [lo, hi);
@@ -145,6 +184,7 @@ bool VolumeMarcher::marchSteps(const RayInterval& in, double kMax, float offset,
 
 bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offset, RayAccumulator& acc) {
     if (crossings_.size() > 1) return marchSteps(in, kMax, offset, acc, [&](double u, double h) { addSegment(u, h, acc); });
+    if (crossings_.front().lookup->emission) return marchEmitting(in, kMax, offset, acc);
     // One volume, the common case: the march's bounds keep every sample inside it.
     const IndexRay ray = crossings_.front().ray;
     const double perU = crossings_.front().perU;

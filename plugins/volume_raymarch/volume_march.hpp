@@ -13,6 +13,11 @@
 // On anisotropic or sheared grids a voxel length is the cube root of the
 // voxel's volume, so optical depth follows world distance, not index steps.
 //
+// A volume's emission grid (radiance per voxel length) adds to the
+// transfer function's colour: a segment of opacity a at extinction s per
+// unit length and emission e contributes c a + e (1 - exp(-s L)) / s, the
+// exact integral of constant emission over it (e L where s -> 0).
+//
 // A surface at world ray parameter tSurface ends the march exactly: the
 // segments before it are whole, the last one is cut at the surface and
 // integrated with its true length.
@@ -41,7 +46,8 @@ struct MarchSettings {
 };
 
 // skip_empty's HDDA masters, one per volume, built once per render on the
-// index-space copy of each grid (OpenVDB's intersector needs uniform voxels).
+// index-space copy of each grid (OpenVDB's intersector needs uniform voxels);
+// an emitting volume's copy holds its emission's active voxels too.
 class EmptySpaceSkipper {
 public:
     explicit EmptySpaceSkipper(const std::vector<Volume>& volumes);
@@ -75,6 +81,8 @@ private:
         const Volume& volume;
         openvdb::FloatGrid::ConstAccessor accessor;
         VolumeSampler sampler;
+        std::optional<openvdb::Vec3SGrid::ConstAccessor> emissionAccessor;
+        std::optional<Vec3LeafSampler> emission;  // through emissionAccessor
         std::optional<VolumeIntersector> hdda;
         double voxelLength;
         bool uniform;  // uniform voxels: index units are voxel lengths exactly
@@ -90,6 +98,7 @@ private:
     bool cross(const Ray& ray);
     void collectIntervals(double uEnd);
     bool marchInterval(const RayInterval& in, double kMax, float offset, RayAccumulator& acc);
+    bool marchEmitting(const RayInterval& in, double kMax, float offset, RayAccumulator& acc);
     template <class AddSegment>
     bool marchSteps(const RayInterval& in, double kMax, float offset, RayAccumulator& acc, AddSegment&& add);
     void addSegment(double u, double length, RayAccumulator& acc);

@@ -34,8 +34,23 @@ struct GridLookup {  // built in place: the sampler points at the accessor
 
 struct VolumeLookup : GridLookup {
     VdbIntersector primary, shadow;
-    explicit VolumeLookup(const ScatterVolume& v) : GridLookup(*v.volume->grid), primary(*v.intersector), shadow(*v.intersector) {}
+    std::optional<openvdb::Vec3SGrid::ConstAccessor> emissionAccessor;
+    std::optional<Vec3LeafSampler> emission;  // through emissionAccessor
+    explicit VolumeLookup(const ScatterVolume& v) : GridLookup(*v.volume->grid), primary(*v.intersector), shadow(*v.intersector) {
+        if (!v.volume->emission) return;
+        emissionAccessor.emplace(v.volume->emission->getConstAccessor());
+        emission.emplace(*emissionAccessor, v.volume->emission->transform());
+    }
 };
+
+// Emission e (per march unit) over a step of length h whose transmittance
+// is dT at extinction sigma (per march unit): e (1 - dT) / sigma per
+// channel, e h where sigma h -> 0.
+Vec3d emittedOver(const Vec3d& e, const Vec3d& sigma, const Vec3d& dT, double h) {
+    Vec3d out;
+    for (int c = 0; c < 3; ++c) out[c] = e[c] * (sigma[c] * h > 1e-6 ? (1.0 - dT[c]) / sigma[c] : h * (1.0 - 0.5 * sigma[c] * h));
+    return out;
+}
 
 struct Crossing {  // one volume on the current camera ray
     std::size_t volume;
@@ -183,18 +198,21 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
             if (t >= uSurface) return true;
             const Vec3d pw = volumes_[first.volume].worldPos(first.ray, t * first.perU);
             row.shares.clear();
-            Vec3d sigma(0.0);
+            Vec3d sigma(0.0), glow(0.0);
             for (const Crossing& c : row.crossings) {
-                const double rho = finiteDensity(row.volumes[c.volume].sampler.wsSample(pw));
+                VolumeLookup& look = row.volumes[c.volume];
+                const double rho = finiteDensity(look.sampler.wsSample(pw));
                 ++row.counts.samples;
+                if (look.emission) glow += toVec3d(look.emission->wsSample(pw)) * c.depthScale;
                 if (!(rho > 0) || rho < params_.cutoff) continue;  // no share: it would pick a receiver with no cache here
                 row.shares.push_back({c.volume, rho * c.depthScale});
                 sigma += volumes_[c.volume].sigmaT * row.shares.back().weight;
             }
-            if (row.shares.empty()) continue;
+            if (row.shares.empty() && glow == Vec3d(0.0)) continue;
             const Vec3d dT = row.shares.size() == 1 ? expNeg(volumes_[row.shares[0].volume].sigmaT * (row.shares[0].weight * h))
                                                     : expNeg(sigma * h);
-            L += inscatter(pw, ray.dir, row.shares, sigma, row, rng) * T * (Vec3d(1.0) - dT);
+            if (!row.shares.empty()) L += inscatter(pw, ray.dir, row.shares, sigma, row, rng) * T * (Vec3d(1.0) - dT);
+            if (glow != Vec3d(0.0)) L += T * emittedOver(glow, sigma, dT, h);
             T *= dT;
             if (T.lengthSqr() < params_.cutoff) return false;
         }
@@ -207,6 +225,7 @@ bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row&
     const Crossing& c = row.crossings.front();
     const ScatterVolume& v = volumes_[c.volume];
     Sampler& sampler = row.volumes[c.volume].sampler;
+    Vec3LeafSampler* emission = row.volumes[c.volume].emission ? &*row.volumes[c.volume].emission : nullptr;
     row.shares.assign(1, Share{c.volume, 0.0});
     const double h = params_.step, cutoff = params_.cutoff;
     std::int64_t n = 0;
@@ -217,10 +236,13 @@ bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row&
             const Vec3d pw = v.worldPos(c.ray, t * c.perU);
             const double rho = finiteDensity(sampler.wsSample(pw));
             ++n;
-            if (!(rho > 0) || rho < cutoff) continue;
-            row.shares[0].weight = rho * c.depthScale;
-            const Vec3d dT = expNeg(v.sigmaT * (row.shares[0].weight * h));
-            L += inscatter(pw, ray.dir, row.shares, v.sigmaT, row, rng) * T * (Vec3d(1.0) - dT);
+            const Vec3d glow = emission ? toVec3d(emission->wsSample(pw)) * c.depthScale : Vec3d(0.0);
+            const bool scatters = rho > 0 && rho >= cutoff;
+            if (!scatters && glow == Vec3d(0.0)) continue;
+            row.shares[0].weight = scatters ? rho * c.depthScale : 0.0;
+            const Vec3d sigma = v.sigmaT * row.shares[0].weight, dT = expNeg(sigma * h);
+            if (scatters) L += inscatter(pw, ray.dir, row.shares, v.sigmaT, row, rng) * T * (Vec3d(1.0) - dT);
+            if (emission) L += T * emittedOver(glow, sigma, dT, h);
             T *= dT;
             more = T.lengthSqr() >= cutoff;
         }

@@ -20,7 +20,7 @@ std::vector<ScatterVolume> scatterVolumes(const Scene& scene, const ScatterParam
         if (vol.empty()) continue;  // OpenVDB's intersector refuses empty grids; they add nothing
         ScatterVolume v;
         v.volume = &vol;
-        v.indexGrid = indexSpaceGrid(*vol.grid);
+        v.indexGrid = occupancyIndexGrid(vol);
         v.intersector = std::make_shared<const VdbIntersector>(*v.indexGrid);
         v.phase = params.phase, v.g = params.g;
         if (vol.medium.fromScene && !paramsWin) {

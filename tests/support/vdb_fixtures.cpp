@@ -14,15 +14,20 @@ void writeProceduralVdb(const std::filesystem::path& path, const std::string& ki
     file.close();
 }
 
-void writeSlabVdb(const std::filesystem::path& path, int nxy, int nz, double voxel) {
+void writeSlabVdb(const std::filesystem::path& path, int nxy, int nz, double voxel, const std::vector<std::string>& alsoNamed) {
     initVdb();
     auto grid = openvdb::FloatGrid::create(0.0f);
     grid->setName("density");
     grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
     grid->fill(openvdb::CoordBBox(openvdb::Coord(-nxy / 2, -nxy / 2, 0), openvdb::Coord(nxy / 2 - 1, nxy / 2 - 1, nz - 1)), 1.0f, true);
     grid->tree().voxelizeActiveTiles();
+    openvdb::GridPtrVec grids{grid};
+    for (const std::string& name : alsoNamed) {
+        grids.push_back(grid->deepCopy());
+        grids.back()->setName(name);
+    }
     openvdb::io::File file(path.string());
-    file.write({grid});
+    file.write(grids);
     file.close();
 }
 

@@ -2,6 +2,7 @@
 // Small VDB files written by the tests themselves (nothing from outside the project).
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace weft::test {
 
@@ -13,7 +14,8 @@ void writeProceduralVdb(const std::filesystem::path& path, const std::string& ki
 // [0, nz), each `voxel` world units. Sampled trilinearly its density ramps
 // to 0 over one voxel past each face, so any line across it along z (away
 // from the x and y faces) integrates to exactly nz voxels of density.
-void writeSlabVdb(const std::filesystem::path& path, int nxy, int nz, double voxel);
+// alsoNamed: further grids of the same slab in the file ("glow", "heat").
+void writeSlabVdb(const std::filesystem::path& path, int nxy, int nz, double voxel, const std::vector<std::string>& alsoNamed = {});
 
 // A density grid with no active voxel (the first frame of a simulation cache).
 void writeEmptyVdb(const std::filesystem::path& path);

@@ -1,0 +1,123 @@
+#include "core/volume/volume_grids.hpp"
+
+#include <openvdb/io/File.h>
+#include <openvdb/tools/GridTransformer.h>
+#include <openvdb/tree/LeafManager.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "core/base/error.hpp"
+#include "core/volume/blackbody.hpp"
+#include "core/volume/vdb_preflight.hpp"
+#include "core/volume/volume.hpp"
+
+namespace weft {
+
+namespace {
+
+// Beyond this a radiator's T^4 would leave float range.
+constexpr double kHottestKelvin = 1e7;
+constexpr float kMaxEmission = 1e30f;
+
+struct EmissionOf {
+    const EmissionSettings& s;
+    const BlackbodyTable* blackbody;  // null without a temperature grid
+
+    openvdb::Vec3s operator()(float temperature, float emission) const {
+        openvdb::Vec3s e(0.0f);
+        if (blackbody && std::isfinite(temperature)) {
+            const double kelvin = std::min(double(temperature) * s.temperatureScale + s.temperatureOffset, kHottestKelvin);
+            if (kelvin > 0) {
+                const double radiance = s.blackbodyIntensity * std::pow(kelvin / 1000.0, 4);
+                e += blackbody->color(kelvin) * float(radiance);
+            }
+        }
+        if (std::isfinite(emission) && emission > 0) e += toVec3f(s.color * (double(emission) * s.strength));
+        for (int c = 0; c < 3; ++c) e[c] = std::isfinite(e[c]) ? std::clamp(e[c], 0.0f, kMaxEmission) : 0.0f;
+        return e;
+    }
+};
+
+}  // namespace
+
+const std::vector<std::string>& gridRoles() {
+    static const std::vector<std::string> roles{"density", "temperature", "emission"};
+    return roles;
+}
+
+const std::vector<std::string>& conventionalGridNames(const std::string& role) {
+    static const std::map<std::string, std::vector<std::string>> names{
+        {"density", {"density"}}, {"temperature", {"temperature", "heat"}}, {"emission", {"emission", "flame", "flames"}}};
+    static const std::vector<std::string> none;
+    const auto it = names.find(role);
+    return it == names.end() ? none : it->second;
+}
+
+openvdb::FloatGrid::Ptr readRoleGrid(const std::string& path, const std::string& gridName, const std::string& role) {
+    return readFloatGrid(path, gridName, role);
+}
+
+std::map<std::string, std::string> pickConventionalGrids(const std::string& path, const std::string& densityName) {
+    initVdb();
+    preflightVdb(path);
+    openvdb::io::File file(path);
+    try {
+        file.open(false);
+    } catch (const std::exception&) {
+        throw Error("volume '" + path + "': not an OpenVDB file");
+    }
+    std::map<std::string, std::string> picked;
+    if (!densityName.empty()) picked["density"] = densityName;
+    for (const std::string& role : gridRoles()) {
+        if (picked.count(role)) continue;
+        for (const std::string& name : conventionalGridNames(role))
+            if (file.hasGrid(name)) {
+                picked[role] = name;
+                break;
+            }
+    }
+    if (!picked.count("density")) picked["density"] = "";  // readFloatGrid's own choice: the first grid
+    return picked;
+}
+
+openvdb::FloatGrid::Ptr inIndexSpaceOf(openvdb::FloatGrid::Ptr grid, const openvdb::math::Transform& target) {
+    if (grid->transform() == target) return grid;
+    auto out = openvdb::FloatGrid::create(grid->background());
+    out->setName(grid->getName());
+    out->setTransform(target.copy());
+    openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*grid, *out);
+    return out;
+}
+
+openvdb::Vec3SGrid::Ptr buildEmissionGrid(const openvdb::FloatGrid* temperature, const openvdb::FloatGrid* emission,
+                                          const EmissionSettings& settings, const openvdb::math::Transform& transform) {
+    auto out = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    out->setName("emission");
+    out->setTransform(transform.copy());
+    if (temperature) out->tree().topologyUnion(temperature->tree());
+    if (emission) out->tree().topologyUnion(emission->tree());
+    const EmissionOf of{settings, temperature ? &BlackbodyTable::get() : nullptr};
+    const auto valueAt = [&](const openvdb::FloatGrid::ConstAccessor* t, const openvdb::FloatGrid::ConstAccessor* e,
+                             const openvdb::Coord& c) { return of(t ? t->getValue(c) : 0.0f, e ? e->getValue(c) : 0.0f); };
+    // Voxels, leaf by leaf in parallel (each leaf is written by one thread).
+    openvdb::tree::LeafManager<openvdb::Vec3STree> leaves(out->tree());
+    leaves.foreach([&](openvdb::Vec3STree::LeafNodeType& leaf, std::size_t) {
+        std::optional<openvdb::FloatGrid::ConstAccessor> t, e;
+        if (temperature) t.emplace(temperature->getConstAccessor());
+        if (emission) e.emplace(emission->getConstAccessor());
+        for (auto it = leaf.beginValueAll(); it; ++it)
+            it.setValue(it.isValueOn() ? valueAt(t ? &*t : nullptr, e ? &*e : nullptr, it.getCoord()) : openvdb::Vec3s(0.0f));
+    });
+    // Active tiles: one value each, from their first voxel.
+    std::optional<openvdb::FloatGrid::ConstAccessor> t, e;
+    if (temperature) t.emplace(temperature->getConstAccessor());
+    if (emission) e.emplace(emission->getConstAccessor());
+    auto tiles = out->tree().beginValueOn();
+    tiles.setMaxDepth(openvdb::Vec3STree::ValueOnIter::LEAF_DEPTH - 1);
+    for (; tiles; ++tiles) tiles.setValue(valueAt(t ? &*t : nullptr, e ? &*e : nullptr, tiles.getCoord()));
+    return out;
+}
+
+}  // namespace weft

@@ -1,0 +1,67 @@
+#pragma once
+// A volume's grids by role. A scene names them ("grids": {"density":
+// "density", "temperature": "heat"}, or {"file": ..., "grid": ...} for a
+// grid in a file of its own); a bare .vdb is searched for the conventional
+// names below and says which it used. Every role reads a float grid of the
+// fog-volume (or unknown) class: a level set, or another value type, is an
+// error naming the grid. A grid placed under another transform than the
+// density's is resampled into the density's index space (OpenVDB's
+// resampleToMatch, trilinear), so one index point addresses every grid.
+//
+// Emission is radiance per voxel length (like the medium's coefficients:
+// scaling a volume keeps its look), RGB in the scene's linear space:
+//   blackbody_intensity x (T / 1000 K)^4 x colour(T)   T = temperature x temperature_scale + temperature_offset
+//   + emission x color x strength
+// colour(T) is the Planckian radiator's colour at luminance 1
+// (core/volume/blackbody.hpp); the fourth power is the Stefan-Boltzmann law,
+// so a hotter region is brighter as well as bluer. Emission comes from the
+// active voxels of the temperature and emission grids; inactive ones emit
+// nothing. The two are combined once per volume into one RGB grid
+// (Volume::emission), so a render looks up one grid for emission.
+#include <map>
+#include <string>
+#include <vector>
+
+#include <openvdb/openvdb.h>
+
+#include "core/scene/camera.hpp"
+
+namespace weft {
+
+// The roles, in order: density, temperature, emission.
+const std::vector<std::string>& gridRoles();
+// A role's conventional grid names, first preferred ("temperature", "heat").
+const std::vector<std::string>& conventionalGridNames(const std::string& role);
+
+// Where a role's grid comes from: a grid of the volume's file, or of its own.
+struct GridSource {
+    std::string file;  // empty: the volume's file
+    std::string grid;
+};
+
+// Reads the float grid `gridName` of the .vdb at `path` for `role`; errors
+// name the file, the grid and the role.
+openvdb::FloatGrid::Ptr readRoleGrid(const std::string& path, const std::string& gridName, const std::string& role);
+
+// For a bare .vdb: each role's grid by its conventional names (density:
+// `densityName` when given, else "density", else the first float grid);
+// roles whose names the file lacks are left out.
+std::map<std::string, std::string> pickConventionalGrids(const std::string& path, const std::string& densityName);
+
+// The grid resampled into `target`'s index space when its transform differs
+// (unchanged otherwise).
+openvdb::FloatGrid::Ptr inIndexSpaceOf(openvdb::FloatGrid::Ptr grid, const openvdb::math::Transform& target);
+
+struct EmissionSettings {
+    double temperatureScale = 1, temperatureOffset = 0;  // Kelvin = value x scale + offset
+    double blackbodyIntensity = 1;
+    Vec3d color{1, 1, 1};  // of the emission grid
+    double strength = 1;
+};
+
+// Volume::emission from the temperature and emission grids (either may be
+// null; both in `transform`'s index space). Finite and non-negative everywhere.
+openvdb::Vec3SGrid::Ptr buildEmissionGrid(const openvdb::FloatGrid* temperature, const openvdb::FloatGrid* emission,
+                                          const EmissionSettings& settings, const openvdb::math::Transform& transform);
+
+}  // namespace weft
