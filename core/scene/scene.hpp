@@ -52,6 +52,8 @@ struct Scene {
     Camera cameraAt(double u) const;
     // Whether the camera moves while the shutter is open (motion blur).
     bool cameraMoves() const;
+    // Whether a volume moves by its velocity while the shutter is open.
+    bool volumesMove() const;
     // Adds a mesh, moving its materials into the scene's table.
     void addMesh(TriangleMesh mesh);
     // The Embree BVH over every mesh and the emissive triangles, built on the
@@ -66,6 +68,9 @@ private:
 // For techniques that do not render volume emission: an Error naming the
 // first emitting volume and the techniques that do render it.
 void requireNoEmission(const Scene& scene, const std::string& technique);
+// For techniques that render one instant of a volume: an Error naming the
+// first volume that moves by its velocity while the shutter is open.
+void requireStillVolumes(const Scene& scene, const std::string& technique);
 
 // Loads a scene from a .json file, a bare .obj/.ply mesh (framed like a bare
 // .vdb, lit by its emissive materials or else by a light over the camera), a bare .vdb (framed like vdb_render does,

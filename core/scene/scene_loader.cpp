@@ -191,7 +191,7 @@ fs::path scenePath(const std::string& text, const fs::path& baseDir, std::option
     return file.is_relative() ? baseDir / file : file;
 }
 
-// "grids": {"density": NAME, "temperature": NAME | {"file": F, "grid": NAME}, "emission": ...}.
+// "grids": {"density": NAME, "temperature": NAME | {"file": F, "grid": NAME}, "emission": ..., "velocity": ...}.
 std::map<std::string, GridSource> readGridSources(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
     const ObjectReader g(r.doc(), r.child("grids"), "grids", {gridRoles().begin(), gridRoles().end()});
     std::map<std::string, GridSource> sources;
@@ -233,7 +233,7 @@ struct EmissionGrids {
 EmissionGrids readEmissionGrids(Volume& vol, const std::map<std::string, std::string>& names, const std::map<std::string, GridSource>& own,
                                 const std::string& volumeFile) {
     EmissionGrids out;
-    for (const std::string& role : {"temperature", "emission"}) {
+    for (const std::string role : {"temperature", "emission"}) {
         std::string file = volumeFile, grid;
         if (const auto it = own.find(role); it != own.end()) file = it->second.file, grid = it->second.grid;
         else if (const auto n = names.find(role); n != names.end()) grid = n->second;
@@ -243,6 +243,27 @@ EmissionGrids readEmissionGrids(Volume& vol, const std::map<std::string, std::st
         (role == std::string("temperature") ? out.temperature : out.emission) = g;
     }
     return out;
+}
+
+// "motion": {"velocity_scale", "fps"}.
+MotionSettings readMotion(const ObjectReader& r) {
+    MotionSettings m;
+    m.velocityScale = r.number("velocity_scale", m.velocityScale, -1e6, 1e6);
+    m.fps = r.number("fps", m.fps, 1e-3, 1e6);
+    return m;
+}
+
+// The velocity grid named for the volume (null when none), as motion in
+// the density's index space, and Volume::grids saying what was read.
+void readMotionGrid(Volume& vol, const std::map<std::string, std::string>& names, const std::map<std::string, GridSource>& own,
+                    const MotionSettings& settings) {
+    std::string file = vol.source, grid;
+    if (const auto it = own.find("velocity"); it != own.end()) file = it->second.file, grid = it->second.grid;
+    else if (const auto n = names.find("velocity"); n != names.end()) grid = n->second;
+    else return;
+    const auto velocity = readVec3Grid(file, grid, "velocity");
+    vol.grids += " velocity=" + velocity->getName() + (file == vol.source ? "" : " (" + file + ")");
+    vol.motion = buildMotionGrid(velocity, vol.grid->transform(), settings, vol.maxMotion);
 }
 
 void buildEmission(Volume& vol, const EmissionGrids& grids, const EmissionSettings& settings) {
@@ -276,6 +297,8 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
         r.has("emission") ? readEmission(ObjectReader(r.doc(), r.child("emission"), "emission",
                                                       {"temperature_scale", "temperature_offset", "blackbody_intensity", "color", "strength"}))
                           : EmissionSettings{};
+    const MotionSettings motion =
+        r.has("motion") ? readMotion(ObjectReader(r.doc(), r.child("motion"), "motion", {"velocity_scale", "fps"})) : MotionSettings{};
     EmissionGrids emitting;
     try {
         vol.source = fromFile ? file.string() : "procedural:" + kind;
@@ -286,11 +309,13 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
             emitting.temperature = makeProceduralTemperature(res, seed);
             vol.grids += " temperature=" + emitting.temperature->getName();
         }
+        readMotionGrid(vol, names, own, motion);  // before placement: velocities are in the file's world space
     } catch (const Error& e) {
         r.fail(fromFile ? "file" : "procedural", e.what());
     }
     if (r.has("emission") && !emitting.temperature && !emitting.emission)
         r.fail("emission", "emission settings need a temperature or emission grid (see 'grids')");
+    if (r.has("motion") && !vol.motion) r.fail("motion", "motion settings need a velocity grid (see 'grids')");
     vol.name = vol.grid->getName();
     const Placement placement = readPlacement(r);
     if (!placement.identity()) vol.grid = placeGrid(vol.grid, placement.matrix());
@@ -369,6 +394,20 @@ void forEachInArray(const JsonDoc& doc, const std::string& pointer, const std::s
     for (std::size_t i = 0; i < arr.size(); ++i) fn(pointer + "/" + std::to_string(i));
 }
 
+// Velocity blur needs an open shutter: a closed one drops the volumes'
+// motion, an open one pads each moving volume's box by its reach.
+void settleMotion(Scene& scene) {
+    for (Volume& v : scene.volumes) {
+        if (!v.motion) continue;
+        if (scene.shutter.instant() || !(v.maxMotion > 0)) {
+            v.motion.reset();
+            continue;
+        }
+        v.motionReach = motionReachOf(v.maxMotion, scene.shutter.open, scene.shutter.close);
+        if (!v.activeBox.empty()) v.activeBox.expand(int(std::ceil(v.motionReach)));
+    }
+}
+
 Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::optional<int> frame) {
     const JsonDoc doc = JsonDoc::load(path);
     ObjectReader top(doc, "", "scene", {"camera", "volumes", "meshes", "lights", "render"});
@@ -377,7 +416,7 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
     scene.source = path;
     if (top.has("volumes"))
         forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
-            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "grids", "emission", "procedural", "resolution", "seed", "transfer_function", "medium", "translate", "rotate", "scale"}), baseDir, frame));
+            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "grids", "emission", "motion", "procedural", "resolution", "seed", "transfer_function", "medium", "translate", "rotate", "scale"}), baseDir, frame));
         });
     if (top.has("meshes"))
         forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) {
@@ -399,6 +438,7 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
         }
         scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect.value_or(sceneAspect));
     }
+    settleMotion(scene);
     return scene;
 }
 
@@ -416,7 +456,8 @@ Scene loadBareVdb(const std::string& path, double aspect, const std::string& gri
     Volume vol;
     vol.source = path;
     requireRegularFile(path, "volume");
-    const std::map<std::string, std::string> names = pickConventionalGrids(path, gridName);
+    std::map<std::string, std::string> names = pickConventionalGrids(path, gridName);
+    names.erase("velocity");  // a bare .vdb's shutter is closed: nothing to blur
     vol.grid = readFloatGrid(path, names.at("density"));
     vol.name = vol.grid->getName();
     vol.grids = "density=" + vol.name;
@@ -480,6 +521,19 @@ std::string lowerExtension(const std::string& path) {
 
 const char* builtinSceneNames() {
     return "builtin:cloud|builtin:sphere|builtin:zoneplate|builtin:grating|builtin:checker|builtin:siemens|builtin:lines|builtin:disc";
+}
+
+bool Scene::volumesMove() const {
+    for (const Volume& v : volumes)
+        if (v.motion) return true;
+    return false;
+}
+
+void requireStillVolumes(const Scene& scene, const std::string& technique) {
+    for (const Volume& v : scene.volumes)
+        if (v.motion)
+            throw Error(technique + " does not blur volumes by their velocity; volume '" + v.source + "' moves (" + v.grids +
+                        ") while the shutter is open: render it with volume.raymarch, or close the shutter (camera.shutter [0, 0])");
 }
 
 void requireNoEmission(const Scene& scene, const std::string& technique) {

@@ -86,7 +86,7 @@ Medium::Medium(const std::vector<Volume>& volumes) {
     for (const Volume& v : volumes) {
         if (v.empty()) continue;
         const double perWorld = 1.0 / v.voxelLength();
-        Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0, nullptr};
+        Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0, nullptr, nullptr};
         e.coefficientMax = maxChannel(e.absorb + e.scatter);
         if (!(e.coefficientMax > 0) && !v.emission) continue;  // nothing to meet
         e.bricks = densityBricks(*v.grid);

@@ -2,6 +2,7 @@
 
 #include <openvdb/io/File.h>
 #include <openvdb/tools/Count.h>
+#include <openvdb/tools/Morphology.h>
 
 #include <cmath>
 #include <filesystem>
@@ -40,9 +41,12 @@ openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid) {
 }
 
 openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume) {
-    if (!volume.emission) return indexSpaceGrid(*volume.grid);
+    if (!volume.emission && !volume.motion) return indexSpaceGrid(*volume.grid);
     openvdb::FloatGrid::Ptr both = volume.grid->deepCopy();
-    both->tree().topologyUnion(volume.emission->tree());
+    if (volume.emission) both->tree().topologyUnion(volume.emission->tree());
+    if (volume.motion && volume.motionReach > 0)  // one 26-neighbour dilation per voxel reached (Chebyshev <= Euclidean)
+        openvdb::tools::dilateActiveValues(both->tree(), int(std::ceil(volume.motionReach)), openvdb::tools::NN_FACE_EDGE_VERTEX,
+                                           openvdb::tools::EXPAND_TILES);
     both->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
     return both;
 }
@@ -67,7 +71,13 @@ BBoxd Volume::worldBox() const {
     return worldBoxOf(grid->transform(), ib.min().asVec3d() - Vec3d(0.5), ib.max().asVec3d() + Vec3d(0.5));
 }
 
-openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName, const std::string& role) {
+namespace {
+
+// The grid `gridName` of a .vdb, of type GridT; gridName empty: "density"
+// if present, else the first grid. `needs` words the type error ("float
+// grids", "a float grid").
+template <class GridT>
+typename GridT::Ptr readTypedGrid(const std::string& path, const std::string& gridName, const std::string& role, const std::string& needs) {
     initVdb();
     requireRegularFile(path, "volume");
     preflightVdb(path);  // lengths and counts OpenVDB would trust
@@ -95,9 +105,9 @@ openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string
     } catch (const std::exception&) {
         throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt or cut short");
     }
-    if (!openvdb::gridPtrCast<openvdb::FloatGrid>(header))
+    if (!openvdb::gridPtrCast<GridT>(header))
         throw Error("volume '" + path + "': " + what + " holds " + header->valueType() + " values; " +
-                    (role.empty() ? "weft renders float grids" : role + " needs a float grid"));
+                    (role.empty() ? "weft renders " + needs : role + " needs " + needs));
     if (!role.empty() && header->getGridClass() == openvdb::GRID_LEVEL_SET)
         throw Error("volume '" + path + "': " + what + " is a level set; " + role + " needs a fog volume (convert it with vdb_tool or OpenVDB's sdfToFogVolume)");
     if (!header->transform().isLinear()) throw Error("volume '" + path + "': " + what + " has a non-linear (frustum) transform, which weft does not support");
@@ -109,9 +119,19 @@ openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string
     } catch (const std::exception&) {
         throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt or cut short");
     }
-    auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    auto grid = openvdb::gridPtrCast<GridT>(base);
     if (!grid) throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt");
     return grid;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName, const std::string& role) {
+    return readTypedGrid<openvdb::FloatGrid>(path, gridName, role, role.empty() ? "float grids" : "a float grid");
+}
+
+openvdb::Vec3SGrid::Ptr readVec3Grid(const std::string& path, const std::string& gridName, const std::string& role) {
+    return readTypedGrid<openvdb::Vec3SGrid>(path, gridName, role, "a vec3s grid");
 }
 
 void computeStatistics(Volume& volume) {

@@ -31,6 +31,18 @@ struct Volume {
     // index space, from the temperature and emission grids
     // (core/volume/volume_grids.hpp); null when the volume emits nothing.
     openvdb::Vec3SGrid::ConstPtr emission;
+    // Eulerian motion (velocity motion blur): the velocity grid in the
+    // density's index space, as index displacement per frame (velocity x
+    // velocity_scale / fps); a lookup at shutter time t frames from the
+    // frame reads every grid at p - motion(p) t (first order). Null when the
+    // volume has no velocity grid or the shutter is closed.
+    openvdb::Vec3SGrid::ConstPtr motion;
+    // How far (index units) a lookup may be advected within the shutter:
+    // the largest |motion| x the shutter's largest |t|. The active box is
+    // padded by it, so bounds and empty-space skipping see where the
+    // volume moves.
+    double motionReach = 0;
+    double maxMotion = 0;  // the largest |motion|, index units per frame
     std::string grids;         // what each role read: "density=density temperature=heat"
     bool gridsPicked = false;  // a bare .vdb's roles, found by their conventional names
     TransferFunction tf;
@@ -62,7 +74,8 @@ openvdb::FloatGrid::ConstPtr placeGrid(const openvdb::FloatGrid::ConstPtr& grid,
 // which works for any affine (anisotropic, rotated, sheared) transform.
 openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid);
 // indexSpaceGrid of the density, whose active voxels also cover the
-// emission's where the volume emits: what an intersector must not skip.
+// emission's where the volume emits, dilated by the motion's reach where it
+// moves: what an intersector must not skip.
 openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume);
 
 // Calls openvdb::initialize() once.
@@ -72,6 +85,8 @@ void initVdb();
 // float grid. Errors name the file and list the grids it holds; with a role
 // ("temperature") they name it too, and a level set is refused for it.
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName, const std::string& role = "");
+// Reads the vec3s grid `gridName` for `role` ("velocity"); errors as above.
+openvdb::Vec3SGrid::Ptr readVec3Grid(const std::string& path, const std::string& gridName, const std::string& role);
 
 // Fills the value range (of the density) and the active bounding box (of
 // density and emission); once per volume: both walk the whole tree.

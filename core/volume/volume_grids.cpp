@@ -43,13 +43,14 @@ struct EmissionOf {
 }  // namespace
 
 const std::vector<std::string>& gridRoles() {
-    static const std::vector<std::string> roles{"density", "temperature", "emission"};
+    static const std::vector<std::string> roles{"density", "temperature", "emission", "velocity"};
     return roles;
 }
 
 const std::vector<std::string>& conventionalGridNames(const std::string& role) {
     static const std::map<std::string, std::vector<std::string>> names{
-        {"density", {"density"}}, {"temperature", {"temperature", "heat"}}, {"emission", {"emission", "flame", "flames"}}};
+        {"density", {"density"}}, {"temperature", {"temperature", "heat"}}, {"emission", {"emission", "flame", "flames"}},
+        {"velocity", {"velocity", "vel", "v"}}};
     static const std::vector<std::string> none;
     const auto it = names.find(role);
     return it == names.end() ? none : it->second;
@@ -118,6 +119,41 @@ openvdb::Vec3SGrid::Ptr buildEmissionGrid(const openvdb::FloatGrid* temperature,
     tiles.setMaxDepth(openvdb::Vec3STree::ValueOnIter::LEAF_DEPTH - 1);
     for (; tiles; ++tiles) tiles.setValue(valueAt(t ? &*t : nullptr, e ? &*e : nullptr, tiles.getCoord()));
     return out;
+}
+
+openvdb::Vec3SGrid::Ptr buildMotionGrid(openvdb::Vec3SGrid::Ptr velocity, const openvdb::math::Transform& density,
+                                        const MotionSettings& settings, double& maxMotion) {
+    openvdb::Vec3SGrid::Ptr motion;
+    if (velocity->transform() == density) {
+        motion = velocity->deepCopy();
+    } else {
+        motion = openvdb::Vec3SGrid::create(velocity->background());
+        motion->setTransform(density.copy());
+        openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*velocity, *motion);
+    }
+    motion->setName("motion");
+    const auto& map = *density.baseMap();
+    const double perFrame = settings.velocityScale / settings.fps;
+    maxMotion = 0;
+    const auto toMotion = [&](const openvdb::Vec3s& v) {
+        const openvdb::Vec3d m = map.applyInverseJacobian(openvdb::Vec3d(v)) * perFrame;
+        if (!(std::isfinite(m[0]) && std::isfinite(m[1]) && std::isfinite(m[2]))) return openvdb::Vec3s(0.0f);
+        // Capped like the reach: a broken simulation's 1e30 must not carry lookups out of integer range.
+        const double length = m.length();
+        const openvdb::Vec3s out(length > kMaxMotionReach ? m * (kMaxMotionReach / length) : m);
+        maxMotion = std::max(maxMotion, double(out.length()));
+        return out;
+    };
+    // Every stored value (active or not: trilinear lookups read both) and
+    // the background, which answers everywhere else.
+    for (auto it = motion->tree().beginValueAll(); it; ++it) it.setValue(toMotion(*it));
+    motion->tree().root().setBackground(toMotion(velocity->background()), /*updateChildNodes=*/false);
+    return motion;
+}
+
+double motionReachOf(double maxMotion, double shutterOpen, double shutterClose) {
+    const double reach = maxMotion * std::max(std::abs(shutterOpen), std::abs(shutterClose));
+    return std::isfinite(reach) ? std::min(reach, kMaxMotionReach) : kMaxMotionReach;
 }
 
 }  // namespace weft

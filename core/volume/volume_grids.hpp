@@ -18,6 +18,13 @@
 // active voxels of the temperature and emission grids; inactive ones emit
 // nothing. The two are combined once per volume into one RGB grid
 // (Volume::emission), so a render looks up one grid for emission.
+//
+// Velocity (a vec3s grid, world units per second, like Houdini's "vel")
+// becomes Volume::motion: index displacement per frame, velocity x
+// velocity_scale / fps through the density's inverse Jacobian, so any
+// affine voxel shape works. A velocity grid of its own transform is
+// resampled into the density's index space as it is (collocated; a
+// staggered grid's half-voxel offset is not undone).
 #include <map>
 #include <string>
 #include <vector>
@@ -28,7 +35,7 @@
 
 namespace weft {
 
-// The roles, in order: density, temperature, emission.
+// The roles, in order: density, temperature, emission, velocity.
 const std::vector<std::string>& gridRoles();
 // A role's conventional grid names, first preferred ("temperature", "heat").
 const std::vector<std::string>& conventionalGridNames(const std::string& role);
@@ -63,5 +70,24 @@ struct EmissionSettings {
 // null; both in `transform`'s index space). Finite and non-negative everywhere.
 openvdb::Vec3SGrid::Ptr buildEmissionGrid(const openvdb::FloatGrid* temperature, const openvdb::FloatGrid* emission,
                                           const EmissionSettings& settings, const openvdb::math::Transform& transform);
+
+struct MotionSettings {
+    double velocityScale = 1;
+    double fps = 24;  // frames per second: velocities are per second, shutters in frames
+};
+
+// Volume::motion from a velocity grid under the density's transform
+// `density` (resampled into its index space when its own differs); sets
+// maxMotion to the largest |motion| over every value a lookup can read.
+// Non-finite velocities move nothing; a motion longer than kMaxMotionReach
+// voxels per frame is shortened to it.
+openvdb::Vec3SGrid::Ptr buildMotionGrid(openvdb::Vec3SGrid::Ptr velocity, const openvdb::math::Transform& density,
+                                        const MotionSettings& settings, double& maxMotion);
+
+// The farthest (index units) a lookup is advected while the shutter is open
+// (maxMotion x the shutter's largest |t|), capped at kMaxMotionReach so
+// that bounds stay finite whatever a broken simulation holds.
+constexpr double kMaxMotionReach = 4096;
+double motionReachOf(double maxMotion, double shutterOpen, double shutterClose);
 
 }  // namespace weft

@@ -218,6 +218,7 @@ CheckedRender checkRender(const RenderRequest& r, const Scene& scene) {
     if (scene.cameraMoves() && !info.motionBlur)
         throw Error("the camera moves while the shutter is open, and " + info.name +
                     " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
+    if (!info.motionBlur) requireStillVolumes(scene, info.name);
     return c;
 }
 
@@ -257,8 +258,12 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     out.counters = ctx.counters.merged();
     out.metadata = metadataFor(q, name, params, ctx.settings, out.counters);
     if (r.frame) out.metadata.emplace_back("weft:frame", std::to_string(*r.frame));
-    for (std::size_t i = 0; i < scene.volumes.size(); ++i)  // what each role of an emitting volume read
-        if (scene.volumes[i].emission) out.metadata.emplace_back("weft:volume:" + std::to_string(i) + ":grids", scene.volumes[i].grids);
+    for (std::size_t i = 0; i < scene.volumes.size(); ++i) {  // what each role of an emitting or moving volume read
+        const Volume& v = scene.volumes[i];
+        const std::string key = "weft:volume:" + std::to_string(i);
+        if (v.emission || v.motion) out.metadata.emplace_back(key + ":grids", v.grids);
+        if (v.motion) out.metadata.emplace_back(key + ":motion_reach_voxels", formatNumber(v.motionReach));
+    }
     if (!scene.shutter.instant())
         out.metadata.emplace_back("weft:shutter", formatNumber(scene.shutter.open) + " " + formatNumber(scene.shutter.close));
     if (!r.tile.empty()) addTileMetadata(out.metadata, r.tile, out.window, out.image.width(), out.image.height());

@@ -130,6 +130,7 @@ public:
     PathTracer(const Scene& scene, const ParamSet& p)
         : maxDepth_(int(p.getInt("max_depth"))), rrDepth_(int(p.getInt("rr_depth"))), plane_(planeOptions(p)),
           model_(Brdf::modelNamed(p.getString("glossy"))), tracking_(shadowTrackingNamed(p.getString("shadow_tracking"))) {
+        requireStillVolumes(scene, "mesh.pathtrace");  // camera motion blur only
         requireLights(scene);
     }
 

@@ -10,6 +10,9 @@
 // volume the ray crosses, and where volumes overlap their extinctions and
 // emissions add (volume_march.hpp states the rule).
 //
+// Motion blur: each camera sample's shutter time moves the camera along its
+// keys and the volumes along their velocity (volume_march.hpp).
+//
 // Meshes: a ray ends at its first surface (Embree); the last segment is cut
 // there and integrated with its true length. The surface is lit by the
 // scene's point and directional lights and emissive triangles with shadow
@@ -127,7 +130,7 @@ public:
                 ++counts.rays;
                 const SurfaceHit hit = accel ? firstSurface(*accel, ray) : SurfaceHit{};
                 const double tSurface = hit.valid() ? double(hit.t) : std::numeric_limits<double>::infinity();
-                const RayAccumulator acc = marcher.march(ray, tSurface, offset);
+                const RayAccumulator acc = marcher.march(ray, tSurface, offset, scene.shutter.frameTime(0, c.time));
                 if (!hit.valid()) return {acc.r, acc.g, acc.b, acc.opacity()};
                 ++counts.surface;
                 const PixelSampler sampler(s.seed, c.px, c.py, c.index, std::uint32_t(s.spp));

@@ -41,10 +41,13 @@ EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
     }
 }
 
+constexpr double kSkipMotionReach = 16;
+
 bool emptySpacePays(const std::vector<Volume>& volumes) {
     double filled = 0, boxed = 0;
     for (const Volume& v : volumes) {
         if (v.empty()) continue;
+        if (v.motion && v.motionReach > kSkipMotionReach) return false;  // dilating by the reach would cost more than it saves
         const float background = v.grid->background();
         const auto skippable = [&](float value) { return value == background || !(v.tf.lookup(value).extinction > 0); };
         if (v.tf.lookup(background).extinction > 0) return false;
@@ -72,6 +75,10 @@ VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototyp
         emissionAccessor.emplace(v.emission->getConstAccessor());
         emission.emplace(*emissionAccessor, v.emission->transform());
     }
+    if (v.motion) {
+        motionAccessor.emplace(v.motion->getConstAccessor());
+        motion.emplace(*motionAccessor, v.motion->transform());
+    }
     if (prototype) hdda.emplace(*prototype);
 }
 
@@ -84,6 +91,7 @@ VolumeMarcher::VolumeMarcher(const Scene& scene, const MarchSettings& settings, 
 // The volumes this ray crosses, their index rays and the march's unit.
 bool VolumeMarcher::cross(const Ray& ray) {
     crossings_.clear();
+    moving_ = false;
     unitLength_ = std::numeric_limits<double>::max();
     if (settings_.bounds) settings_.bounds->query(ray.origin, ray.dir, std::numeric_limits<double>::infinity(), crossed_);
     const std::size_t n = settings_.bounds ? crossed_.size() : lookups_.size();
@@ -92,6 +100,7 @@ bool VolumeMarcher::cross(const Ray& ray) {
         const auto r = toIndexRay(ray, l.volume);
         if (!r) continue;
         crossings_.push_back({&l, *r, 0, 0});
+        if (l.motion && time_ != 0) moving_ = true;
         unitLength_ = std::min(unitLength_, l.voxelLength);
     }
     if (crossings_.empty()) return false;
@@ -133,7 +142,8 @@ void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
     for (Crossing& c : crossings_) {
         const double t = u * c.perU;
         if (t < c.ray.t0 || t >= c.ray.t1) continue;
-        const Vec3d p = c.ray.at(t);
+        Vec3d p = c.ray.at(t);
+        if (c.lookup->motion && time_ != 0) p -= Vec3d(c.lookup->motion->isSample(p)) * time_;
         const float value = c.lookup->sampler.isSample(p);
         ++samples_;
         if (c.lookup->emission) glow += c.lookup->emission->isSample(p) * c.depthScale;
@@ -183,7 +193,7 @@ bool VolumeMarcher::marchSteps(const RayInterval& in, double kMax, float offset,
 }
 
 bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offset, RayAccumulator& acc) {
-    if (crossings_.size() > 1) return marchSteps(in, kMax, offset, acc, [&](double u, double h) { addSegment(u, h, acc); });
+    if (crossings_.size() > 1 || moving_) return marchSteps(in, kMax, offset, acc, [&](double u, double h) { addSegment(u, h, acc); });
     if (crossings_.front().lookup->emission) return marchEmitting(in, kMax, offset, acc);
     // One volume, the common case: the march's bounds keep every sample inside it.
     const IndexRay ray = crossings_.front().ray;
@@ -201,8 +211,9 @@ bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offs
     return more;
 }
 
-RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offset) {
+RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offset, double time) {
     RayAccumulator acc;
+    time_ = time;
     if (!cross(ray)) return acc;
     const double h = settings_.step;
     const double uHit = std::isfinite(tSurface) ? tSurface * ray.dir.length() / unitLength_ : uEnd_;

@@ -181,6 +181,7 @@ TEST(FuzzRegressions, SceneDictionaryHasEveryKey) {
           R"({"volumes": [{)" + sphere + R"(, "transfer_function": {"zzz": 1}}]})",
           R"({"volumes": [{)" + sphere + R"(, "transfer_function": {"points": [{"zzz": 1}]}}]})",
           R"({"volumes": [{)" + sphere + R"(, "grids": {"zzz": 1}}]})", R"({"volumes": [{)" + sphere + R"(, "emission": {"zzz": 1}}]})",
+          R"({"volumes": [{)" + sphere + R"(, "motion": {"zzz": 1}}]})",
           std::string(R"({"render": {"zzz": 1}})")}) {
         const std::vector<std::string> keys = keysListedFor(scene);
         EXPECT_FALSE(keys.empty()) << scene;

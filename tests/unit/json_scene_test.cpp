@@ -90,7 +90,7 @@ TEST(SceneLoader, ReadsCameraVolumesLightsAndRenderSettings) {
 
 TEST(SceneLoader, ErrorsPointAtFileLineColumn) {
     EXPECT_EQ(sceneError("{\"volumes\": [{\"procedural\": \"sphere\", \"resolutoin\": 8}]}"),
-              "s.json:1:39: unknown key 'resolutoin' in volume; valid keys: emission, file, grid, grids, medium, procedural, resolution, rotate, scale, seed, transfer_function, translate");
+              "s.json:1:39: unknown key 'resolutoin' in volume; valid keys: emission, file, grid, grids, medium, motion, procedural, resolution, rotate, scale, seed, transfer_function, translate");
     EXPECT_EQ(sceneError("{\n\"camera\": {\"fov\": 200}}"), "s.json:2:19: camera.fov = 200 is outside [0.01, 179]");
     EXPECT_EQ(sceneError("{\"volumes\": [{\"procedural\": \"torus\"}]}"),
               "s.json:1:29: unknown procedural volume 'torus' (known: sphere|cloud|ct|fire)");

@@ -180,7 +180,7 @@ TEST(VolumeGrids, WrongGridsAreOneLineErrorsNamingThem) {
               std::string::npos);
     EXPECT_NE(sceneWith(R"("grids": {"emission": {"file": "more.vdb", "grid": "surface"}})").find("the emission grid 'surface' is a level set"),
               std::string::npos);
-    EXPECT_NE(sceneWith(R"("grids": {"velocity": "vel"})").find("unknown key 'velocity' in grids"), std::string::npos);
+    EXPECT_NE(sceneWith(R"("grids": {"colour": "vel"})").find("unknown key 'colour' in grids"), std::string::npos);
     EXPECT_NE(sceneWith(R"("emission": {"strength": 2})").find("emission settings need a temperature or emission grid"), std::string::npos);
     EXPECT_NE(sceneWith(R"("grid": "density", "grids": {"density": "density"})").find("name the density grid once"), std::string::npos);
     EXPECT_NE(sceneWith(R"("grids": {"temperature": "heat"}, "emission": {"temperature_scale": -1})").find("emission.temperature_scale = -1 is outside"),
