@@ -1,6 +1,7 @@
 // weft_mesa_check: renders the cross-check pass lists (crosscheck_cases.hpp)
-// with the GL implementation EGL finds (headless, surfaceless platform; the
-// Gallium driver is chosen by GALLIUM_DRIVER) and prints one line per case:
+// with the GL implementation EGL finds (headless: Mesa's surfaceless platform,
+// the Gallium driver chosen by GALLIUM_DRIVER, or a GPU's EGL device; see
+// gl_context.hpp) and prints one line per case:
 //   CASE name samples=N invocations=N written=N hash=N
 // SAMPLES_PASSED comes from an occlusion query around the passes; the
 // invocations from an atomic counter each program increments first (helper
@@ -11,63 +12,18 @@
 // A compatibility context (polygon stipple is compatibility-only), GLSL 3.30
 // with ARB_shader_atomic_counters and ARB_shader_image_load_store
 // (early_fragment_tests): softpipe offers GL 3.3, llvmpipe 4.5.
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
-
 #include <cstdio>
 #include <cstring>
 #include <string>
 
 #include "tests/hwsim/crosscheck_cases.hpp"
+#include "tests/hwsim/gl_context.hpp"
 
 namespace {
 
 using namespace weft::crosscheck;
-
-[[noreturn]] void fail(const std::string& why) {
-    std::printf("ERROR %s\n", why.c_str());
-    std::exit(2);
-}
-
-void makeContext() {
-    auto getDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    if (!getDisplay) fail("EGL has no eglGetPlatformDisplayEXT (EGL_EXT_platform_base)");
-    EGLDisplay display = getDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (display == EGL_NO_DISPLAY) fail("no EGL display on the surfaceless platform (is libegl-mesa0 installed?)");
-    if (!eglInitialize(display, nullptr, nullptr)) fail("eglInitialize failed, EGL error 0x" + std::to_string(eglGetError()));
-    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                              EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT, EGL_NONE};
-    EGLContext ctx = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
-    if (ctx == EGL_NO_CONTEXT) fail("eglCreateContext (GL 3.3 compatibility) failed, EGL error " + std::to_string(eglGetError()));
-    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) fail("eglMakeCurrent without a surface failed");
-}
-
-bool hasExtension(const char* name) {
-    GLint n = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i)
-        if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))), name) == 0) return true;
-    return false;
-}
-
-GLuint compile(GLenum type, const std::string& src) {
-    GLuint s = glCreateShader(type);
-    const char* text = src.c_str();
-    glShaderSource(s, 1, &text, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        fail(std::string("shader compile: ") + log);
-    }
-    return s;
-}
+using weft::gl::fail;
+using weft::gl::hasExtension;
 
 GLuint program(ProgramKind kind, bool early) {
     const std::string vs = "#version 330 compatibility\nlayout(location = 0) in vec3 p;\n"
@@ -80,14 +36,7 @@ GLuint program(ProgramKind kind, bool early) {
     if (kind == ProgramKind::DiscardOdd) fs += "  if ((int(gl_FragCoord.x) & 1) == 1) discard;\n";
     if (kind == ProgramKind::WriteDepth) fs += "  gl_FragDepth = gl_FragCoord.x < 32.0 ? 0.25 : 0.75;\n";
     fs += "}\n";
-    GLuint prog = glCreateProgram();
-    glAttachShader(prog, compile(GL_VERTEX_SHADER, vs));
-    glAttachShader(prog, compile(GL_FRAGMENT_SHADER, fs));
-    glLinkProgram(prog);
-    GLint ok = 0;
-    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) fail("program link failed");
-    return prog;
+    return weft::gl::linkProgram(vs, fs);
 }
 
 GLenum glFunc(CompareFunc f) {
@@ -192,9 +141,8 @@ void setUpTarget() {
 }  // namespace
 
 int main() {
-    makeContext();
-    std::printf("RENDERER %s | %s\n", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
-                reinterpret_cast<const char*>(glGetString(GL_VERSION)));
+    weft::gl::makeContext(3, 3);
+    std::printf("RENDERER %s\n", weft::gl::rendererString().c_str());
     for (const char* ext : {"GL_ARB_shader_atomic_counters", "GL_ARB_shader_image_load_store"})
         if (!hasExtension(ext)) fail(std::string("the GL implementation lacks ") + ext);
     boundsSupported = hasExtension("GL_EXT_depth_bounds_test");
