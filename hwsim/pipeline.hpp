@@ -79,6 +79,7 @@ struct DrawPlan {
     bool emptyQuadsRun = false;  // quads emptied by early tests still run (profile quirk)
     bool simple = false;  // per-pixel programs, at most an early depth test: the short path  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
     int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
+    bool wholeBlock = false;  // a lock-step block that runs costs all its lanes (fixed-width SIMD)
 };
 
 class Pipeline {

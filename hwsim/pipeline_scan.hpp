@@ -60,7 +60,7 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
             else if (m)
                 shadeQuad(s, program, p, qx, qy, m, c, lockStep ? blockMax.data() : nullptr, blockLanes.data(), tx0, ty0);
     if (lockStep)
-        for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * blockLanes[b];
+        for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * (p.wholeBlock && blockLanes[b] ? p.blockW * p.blockH : blockLanes[b]);
 }
 
 // The short path (DrawPlan::simple): each live pixel through an optional

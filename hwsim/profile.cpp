@@ -42,6 +42,7 @@ public:
         if (!v.is_string()) fail(key, "must be a string");
         return v.get<std::string>();
     }
+    bool flagOr(const std::string& key, bool absent) { return j_.contains(key) ? flag(key) : absent; }
     bool flag(const std::string& key) {
         const json& v = at(key);
         if (!v.is_boolean()) fail(key, "must be true or false");
@@ -108,6 +109,7 @@ Profile readProfile(Reader& r) {
     if (!block.is_array() || block.size() != 2) r.fail("branch_block", "must be [width, height]");
     p.branchBlockW = r.power2("branch_block", block[0], 1, 64);
     p.branchBlockH = r.power2("branch_block", block[1], 1, 64);
+    p.lockStepWholeBlock = r.flagOr("lock_step_whole_block", false);
     if (p.earlyTests == EarlyTests::CoarseOnly && p.coarseTile == 0)
         r.fail("coarse_tile", "must be set when early_tests is coarse_only");
     if (p.branchBlockW * p.branchBlockH > 1 && (p.branchBlockW < 2 || p.branchBlockH < 2))
@@ -137,8 +139,12 @@ Profile parseProfile(const std::string& jsonText, const std::string& fileName) {
         throw Error(fileName + ": " + e.what());
     }
     if (!j.is_object()) throw Error(fileName + ": a profile is a JSON object");
+    CostModel cost;  // optional key; absent: the documented default
+    if (j.contains("cost_model")) cost = parseCostModel(j["cost_model"].dump(), fileName), j.erase("cost_model");
     Reader r(j, fileName);
-    return readProfile(r);
+    Profile p = readProfile(r);
+    p.cost = cost;
+    return p;
 }
 
 const std::vector<Profile>& builtinProfiles() {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hwsim/cost_model.hpp"
 #include "hwsim/raster.hpp"
 
 namespace weft::hwsim {
@@ -40,7 +41,9 @@ struct Profile {
     bool queryCountsAtEarlyTests = true; // with early_fragment_tests, SAMPLES_PASSED counts before a discard (GL spec)
     ShadingGranularity shading = ShadingGranularity::Pixel;
     int branchBlockW = 1, branchBlockH = 1;  // pixels executing one program in lock step (dynamic branching)
+    bool lockStepWholeBlock = false;          // a block that runs costs all its lanes, not only its shaded quads
     bool polygonStipple = true;               // feature present
+    CostModel cost;                           // predicted times (cost_model.hpp)
 
     // Throws weft::Error naming the profile and the missing feature.
     void require(bool featurePresent, const std::string& feature, const std::string& who) const;

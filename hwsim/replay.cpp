@@ -56,6 +56,28 @@ std::string replayTable(const ReplayResult& result) {
     return out;
 }
 
+std::size_t baselineIndex(const ReplayResult& result) {
+    for (std::size_t i = 0; i < result.variants.size(); ++i)
+        if (result.variants[i].label == result.baseline) return i;
+    return 0;
+}
+
+std::string replayPredictions(const ReplayResult& result, const Profile& profile) {
+    if (result.variants.empty()) return "";
+    const CostModel& model = profile.cost;
+    const double base = predictedMs(model, result.variants[baselineIndex(result)].counters);
+    std::string out = "predicted time (" + profile.name + " cost model, " + model.calibration + "):\n";
+    char line[200];
+    std::snprintf(line, sizeof line, "%-16s  %12s  %s\n", "variant", "predicted ms", ("speed-up vs " + result.variants[baselineIndex(result)].label).c_str());
+    out += line;
+    for (const ReplayVariant& v : result.variants) {
+        const double ms = predictedMs(model, v.counters);
+        std::snprintf(line, sizeof line, "%-16s  %12.3f  %8.3f\n", v.label.c_str(), ms, ms > 0 ? base / ms : 0.0);
+        out += line;
+    }
+    return out;
+}
+
 std::string replayStatsJson(const std::string& name, const Profile& profile, const ParamSet& params,
                             const ReplayResult& result) {
     nlohmann::ordered_json j;

@@ -28,6 +28,7 @@ struct ReplayResult {
     std::vector<ReplayVariant> variants;
     std::vector<std::string> notes;  // one line each, printed under the table
     std::optional<Image> image;      // replays of a renderer return its image
+    std::string baseline;            // the variant speed-ups are relative to (empty: the first)
 };
 
 struct ReplayInfo {
@@ -52,6 +53,13 @@ std::string replayTable(const ReplayResult& result);
 // {"replay", "profile", "params", "variants": {label: {counter: n}}, "notes"}.
 std::string replayStatsJson(const std::string& name, const Profile& profile, const ParamSet& params,
                             const ReplayResult& result);
+
+// Predicted time of each variant under the profile's cost model and its
+// speed-up over the baseline variant, one line each, under a heading that
+// names the model's calibration.
+std::string replayPredictions(const ReplayResult& result, const Profile& profile);
+// The baseline variant's index (ReplayResult::baseline, else 0).
+std::size_t baselineIndex(const ReplayResult& result);
 
 // The pipeline's counts merged with a replay's own counters.
 CounterMap withStageCounts(const StageCounts& counts, CounterMap extra = {});

@@ -62,6 +62,7 @@ ReplayResult runKeller(const Profile& profile, const ParamSet& p) {
     const int cost = int(p.getInt("program_cost"));
     const auto scene = randomScene(int(p.getInt("triangles")), w, h, std::uint64_t(p.getInt("seed")));
     ReplayResult result;
+    result.baseline = "supersampled";
 
     Framebuffer interleavedFb(w, h);
     Pipeline interleaved(interleavedFb, profile);

@@ -140,6 +140,7 @@ ReplayResult runSegovia(const Profile& profile, const ParamSet& p) {
     for (const std::string& n : {std::string("2"), std::string("4")})
         if (p.getString("patterns") == "both" || p.getString("patterns") == n + "x" + n) patterns.push_back(std::stoi(n));
     ReplayResult result;
+    result.baseline = "none";
     {
         Framebuffer fb(w, h);
         const Setup s{w, h, 1, lights, cost};

@@ -50,6 +50,7 @@ void runHwsim(const HwsimOptions& o) {
     if (!o.image.empty()) checkOutputPath(o.image, "-o");
     const hwsim::ReplayResult result = info.run(profile, params);
     std::printf("%s under %s\n%s", info.name.c_str(), profile.name.c_str(), hwsim::replayTable(result).c_str());
+    std::printf("\n%s", hwsim::replayPredictions(result, profile).c_str());
     if (!o.stats.empty()) writeTextAtomically(o.stats, hwsim::replayStatsJson(info.name, profile, params, result), "stats");
     if (!o.image.empty()) {
         if (!result.image) throw Error("hwsim: replay '" + info.name + "' makes no image (-o)");
