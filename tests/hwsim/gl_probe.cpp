@@ -93,6 +93,8 @@ std::string toJson(const Options& o, const std::string& renderer, const Report& 
         for (std::size_t k = 0; k < m.wallMs.size(); ++k) j << (k ? ", " : "") << m.wallMs[k];
         j << "], \"cpu_ms_runs\": [";
         for (std::size_t k = 0; k < m.cpuRuns.size(); ++k) j << (k ? ", " : "") << m.cpuRuns[k];
+        j << "], \"gpu_ms_runs\": [";
+        for (std::size_t k = 0; k < m.gpuRuns.size(); ++k) j << (k ? ", " : "") << m.gpuRuns[k];
         j << "]}" << (i + 1 < r.measurements.size() ? "," : "") << "\n";
     }
     j << "  ],\n  \"images\": [\n";
@@ -119,14 +121,19 @@ std::string underscored(std::string s) {
     return s;
 }
 
-void print(const Report& r) {
-    for (const Measurement& m : r.measurements) {
+// The lines not printed yet (each replay's as it finishes: a long run shows its figures early).
+void print(const Report& r, std::size_t& measurementsDone, std::size_t& imagesDone) {
+    for (; measurementsDone < r.measurements.size(); ++measurementsDone) {
+        const Measurement& m = r.measurements[measurementsDone];
         const auto [lo, hi] = std::minmax_element(m.wallMs.begin(), m.wallMs.end());
         std::printf("RESULT replay=%s size=%d variant=%s median_ms=%.3f gpu_ms=%.3f cpu_ms=%.3f min_ms=%.3f max_ms=%.3f runs=%zu\n",
                     m.replay.c_str(), m.size, underscored(m.variant).c_str(), m.medianMs, m.gpuMs, m.cpuMs, *lo, *hi, m.wallMs.size());
     }
-    for (const ImageCheck& c : r.images)
+    for (; imagesDone < r.images.size(); ++imagesDone) {
+        const ImageCheck& c = r.images[imagesDone];
         std::printf("IMAGES replay=%s size=%d identical=%s %s\n", c.replay.c_str(), c.size, c.identical ? "yes" : "NO", c.what.c_str());
+    }
+    std::fflush(stdout);
 }
 
 }  // namespace
@@ -144,13 +151,14 @@ int main(int argc, char** argv) {
     GLuint vao;  // attributeless rectangles
     glGenVertexArrays(1, &vao);
     Report report;
+    std::size_t measurementsDone = 0, imagesDone = 0;
     for (int size : o.sizes)
         for (const std::string& replay : o.replays) {
             glBindVertexArray(vao);
             if (replay == "segovia.table1") runSegovia(o, size, report);
             else runKeller(o, size, report);
+            print(report, measurementsDone, imagesDone);
         }
-    print(report);
     if (!o.out.empty()) writeAtomically(o.out, toJson(o, renderer, report));
     return 0;
 }

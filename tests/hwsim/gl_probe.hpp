@@ -24,7 +24,7 @@ struct Measurement {
     int size = 0;
     double medianMs = 0, gpuMs = -1;  // gpuMs: median GL_TIME_ELAPSED, -1 without timer queries
     double cpuMs = 0;                 // median CPU time of the process (all threads): a software GL's work on a shared machine
-    std::vector<double> wallMs, cpuRuns;  // every timed run
+    std::vector<double> wallMs, cpuRuns, gpuRuns;  // every timed run
 };
 
 struct ImageCheck {

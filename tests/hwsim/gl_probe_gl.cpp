@@ -74,7 +74,7 @@ Measurement measure(const Options& o, const std::function<void()>& prepare, cons
     m.medianMs = median(m.wallMs);
     m.gpuMs = query ? median(gpu) : -1;
     m.cpuMs = median(cpu);
-    m.cpuRuns = cpu;
+    m.cpuRuns = cpu, m.gpuRuns = gpu;
     return m;
 }
 
