@@ -2,15 +2,22 @@
 // per-fragment loop of the modelled pipeline), measured side by side on one
 // and two threads, and against the same passes without stipple and under
 // the quad-shading GeForce 7800 profile. Target: >= 100 M fragments/s on two
-// cores (stipple + depth, ideal profile).
+// cores (stipple + depth, ideal profile). Then the replays' pass lists
+// (keller.stipple: stipple + depth; segovia.table1: the Table 1 variants) at
+// 1024x1024 under the mesa-llvmpipe profile beside llvmpipe itself timing
+// the same passes (weft_gl_probe, medians of 3): fragments per second of
+// each and their ratio. Target: hwsim >= llvmpipe.
 #include <tbb/global_control.h>
 
 #include <chrono>
 #include <ctime>
 #include <cstdio>
+#include <filesystem>
+#include <map>
 #include <string>
 
 #include "hwsim/pipeline.hpp"
+#include "hwsim/replay.hpp"
 
 using namespace weft::hwsim;
 
@@ -56,6 +63,46 @@ void report(const char* what, const Measure& m, double base) {
                 m.cpuRate() / 1e6);
 }
 
+#ifdef WEFT_GL_PROBE
+// Median ms per replay summed over its variants, from weft_gl_probe on llvmpipe.
+std::map<std::string, double> llvmpipeMs(int size) {
+    const char* vendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
+    const std::string cmd = std::string("env GALLIUM_DRIVER=llvmpipe LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless ") +
+                            (std::filesystem::exists(vendor) ? std::string("__EGL_VENDOR_LIBRARY_FILENAMES=") + vendor + " " : "") +
+                            WEFT_GL_PROBE + " --repeats 3 --sizes " + std::to_string(size) + " 2>/dev/null";
+    std::map<std::string, double> ms;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return ms;
+    char line[512], replay[64];
+    double median = 0;
+    while (std::fgets(line, sizeof line, pipe))
+        if (std::sscanf(line, "RESULT replay=%63s size=%*d variant=%*s median_ms=%lf", replay, &median) == 2) ms[replay] += median;
+    pclose(pipe);
+    return ms;
+}
+
+void replaysBesideLlvmpipe() {
+    const int size = 1024;
+    const std::map<std::string, double> gl = llvmpipeMs(size);
+    std::printf("\nreplays at %dx%d, mesa-llvmpipe profile (hwsim, 2 threads) vs llvmpipe (weft_gl_probe, timed passes)\n", size, size);
+    for (const char* replay : {"keller.stipple", "segovia.table1"}) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const ReplayResult r = runReplay(replay, findProfile("mesa-llvmpipe"), {{"width", std::to_string(size)}, {"height", std::to_string(size)}});
+        const double hwsimS = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        double fragments = 0;
+        for (const ReplayVariant& v : r.variants) fragments += double(v.counters.at("fragments.generated"));
+        const auto it = gl.find(replay);
+        if (it == gl.end()) {
+            std::printf("%-16s hwsim %8.1f M fragments/s; llvmpipe: weft_gl_probe gave no times\n", replay, fragments / hwsimS / 1e6);
+            continue;
+        }
+        const double glRate = fragments / (it->second * 1e-3), hwsimRate = fragments / hwsimS;
+        std::printf("%-16s hwsim %8.1f M fragments/s  llvmpipe %8.1f M fragments/s  hwsim/llvmpipe x%.2f (target >= 1: %s)\n", replay,
+                    hwsimRate / 1e6, glRate / 1e6, hwsimRate / glRate, hwsimRate >= glRate ? "met" : "NOT met");
+    }
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,5 +118,8 @@ int main(int argc, char** argv) {
     report("stipple 4x4 + depth, modern-desktop, 2 threads", run("modern-desktop", 2, 4, passes), base);
     std::printf("target: >= 100 M fragments/s through stipple + depth on 2 cores: %s (%.1f M/s)\n",
                 base >= 100e6 ? "met" : "NOT met", base / 1e6);
+#ifdef WEFT_GL_PROBE
+    replaysBesideLlvmpipe();
+#endif
     return 0;
 }
