@@ -58,7 +58,10 @@ def run_probe(args):
         if r.returncode != 0:
             fail(f"weft_gl_probe failed (exit {r.returncode})")
         with open(out) as f:
-            return json.load(f)
+            measured = json.load(f)
+        if args.save_measured:
+            atomic_write(args.save_measured, json.dumps(measured, indent=1) + "\n")
+        return measured
 
 
 def hwsim_counts(weft, profile, replay, size, params):
@@ -203,6 +206,7 @@ def main():
     ap.add_argument("--weft", default=os.path.join(ROOT, "build", "bin", "weft"))
     ap.add_argument("--clock", choices=["auto", "cpu", "gpu", "wall"], default="auto",
                     help="measured time: process CPU, GL_TIME_ELAPSED or wall (auto: cpu for llvmpipe/softpipe, else gpu if timed)")
+    ap.add_argument("--save-measured", help="with --driver: also keep the probe's output here (for --measured later)")
     ap.add_argument("--dry-run", action="store_true", help="print the table, write nothing")
     args = ap.parse_args()
     if bool(args.driver) == bool(args.measured):
