@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/scene/scene.hpp"
 #include "tests/support/moving_blob.hpp"
