@@ -15,6 +15,11 @@ namespace {
 
 // A 32^3 cube of constant density (no opacity gradient inside) whose
 // emission steps from 0 to `glow` at z = 16, in the half x >= 16 only.
+openvdb::Coord centreOf(const openvdb::CoordBBox& box) {
+    const openvdb::Coord d = box.dim();
+    return box.min() + openvdb::Coord(d.x() / 2, d.y() / 2, d.z() / 2);
+}
+
 Volume glowingCube(float glow) {
     test::TempDir dir;
     test::writeSlabVdb(dir / "cube.vdb", 32, 32, 0.1);
@@ -23,7 +28,7 @@ Volume glowingCube(float glow) {
     emission->setTransform(v.grid->transform().copy());
     const openvdb::CoordBBox box = v.grid->evalActiveVoxelBoundingBox();
     emission->denseFill(openvdb::CoordBBox(box.min(), box.max()), openvdb::Vec3s(0.0f), true);
-    const openvdb::Coord mid = box.min() + box.dim() / 2;
+    const openvdb::Coord mid = centreOf(box);
     emission->denseFill(openvdb::CoordBBox(openvdb::Coord(mid.x(), box.min().y(), mid.z()), box.max()), openvdb::Vec3s(glow, glow * 0.5f, 0.0f), true);
     v.emission = emission;
     return v;
@@ -44,7 +49,7 @@ TEST(EmissionOracle, AChangingGlowIsAFeatureWhereTheDensityIsFlat) {
     }();
     const Volume glowing = glowingCube(1.0f);
     const openvdb::CoordBBox box = glowing.grid->evalActiveVoxelBoundingBox();
-    const openvdb::Coord mid = box.min() + box.dim() / 2;
+    const openvdb::Coord mid = centreOf(box);
     const openvdb::Coord step(mid.x() + 8, mid.y(), mid.z());      // on the glow's step
     const openvdb::Coord dark(box.min().x() + 4, mid.y(), mid.z());  // far from any glow or edge
     for (const char* name : {"gradient_alpha", "majorant", "vdb_topology"}) {
