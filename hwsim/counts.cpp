@@ -14,6 +14,8 @@ void StageCounts::add(const StageCounts& o) {
     for (int i = 0; i < int(Stage::Count); ++i) rejected[i] += o.rejected[i];
     discarded += o.discarded, invocations += o.invocations, helpers += o.helpers, cost += o.cost;
     samplesPassed += o.samplesPassed, pixelsWritten += o.pixelsWritten, tilesCulled += o.tilesCulled;
+    fragmentShaderInvocations += o.fragmentShaderInvocations;
+    clippingInputPrimitives += o.clippingInputPrimitives, clippingOutputPrimitives += o.clippingOutputPrimitives;
 }
 
 CounterMap StageCounts::named() const {
@@ -28,6 +30,9 @@ CounterMap StageCounts::named() const {
     m["samples.passed"] = samplesPassed;
     m["pixels.written"] = pixelsWritten;
     m["coarse.tiles_culled"] = tilesCulled;
+    m["stats.fragment_shader_invocations"] = fragmentShaderInvocations;
+    m["stats.clipping_input_primitives"] = clippingInputPrimitives;
+    m["stats.clipping_output_primitives"] = clippingOutputPrimitives;
     return m;
 }
 

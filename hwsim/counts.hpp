@@ -10,6 +10,10 @@
 //   samples.passed                   what a SAMPLES_PASSED query counts
 //   pixels.written                   passed fragments that write colour (any channel enabled) or depth
 //   coarse.tiles_culled              hierarchical Z/stencil tiles rejected whole
+//   stats.fragment_shader_invocations   what a FRAGMENT_SHADER_INVOCATIONS query reports (the profile's
+//                                       shader_invocations_counter: pixels, quads or whole stamps)
+//   stats.clipping_input_primitives     primitives drawn (CLIPPING_INPUT_PRIMITIVES)
+//   stats.clipping_output_primitives    primitives leaving the clipper (CLIPPING_OUTPUT_PRIMITIVES)
 #include <cstdint>
 
 #include "core/base/counters.hpp"
@@ -23,6 +27,7 @@ struct StageCounts {
     std::int64_t rejected[int(Stage::Count)]{};
     std::int64_t discarded = 0, invocations = 0, helpers = 0, cost = 0;
     std::int64_t samplesPassed = 0, pixelsWritten = 0, tilesCulled = 0;
+    std::int64_t fragmentShaderInvocations = 0, clippingInputPrimitives = 0, clippingOutputPrimitives = 0;
 
     void add(const StageCounts& o);
     // Every counter by name, zeros included (tables line up across runs).

@@ -85,6 +85,7 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.simple = !p.quad && pr.branchBlockW * pr.branchBlockH == 1 && !p.stencil && !p.bounds && !p.stippleLate && !p.stippleStart &&
                !p.deferWrites && !p.countEarly && !t.writesDepth && (!p.depth || p.zsEarly);
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH, p.wholeBlock = pr.lockStepWholeBlock;
+    p.stampW = pr.statsStampW, p.stampH = pr.statsStampH, p.statsAtScan = pr.statsCountedAtScan;
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});
     p.tileH = std::max({16, pr.coarseTile, pr.branchBlockH});
     return p;

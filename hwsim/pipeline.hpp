@@ -80,6 +80,8 @@ struct DrawPlan {
     bool simple = false;  // per-pixel programs, at most an early depth test: the short path  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
     int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
     bool wholeBlock = false;  // a lock-step block that runs costs all its lanes (fixed-width SIMD)
+    int stampW = 1, stampH = 1;  // the profile's FRAGMENT_SHADER_INVOCATIONS stamp
+    bool statsAtScan = false;    // stamps counted where coverage is found, not where the program runs
 };
 
 class Pipeline {
@@ -128,13 +130,17 @@ private:
     void draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits);
     template <class Program>
     void scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, StageCounts& c) const;
+    // FRAGMENT_SHADER_INVOCATIONS of one tile from a lane mask per quad (those that
+    // ran the program, or those scanned).
+    static std::int64_t statsInvocations(const DrawPlan& p, const std::uint8_t* lanesSet, int qw, int tx0, int ty0, int x1, int y1);
     void cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int y1, int x1,
                          std::uint8_t* masks, StageCounts& c) const;
+    // Both return the lanes whose program ran for the fragment (not as a helper).
     template <class Program>
-    void shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
-                     StageCounts& c) const;
+    unsigned shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                         StageCounts& c) const;
     template <class Program>
-    void shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+    unsigned shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
                    StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const;
 
     // Stencil then depth at one pixel; Stage::Count when both pass. Writes

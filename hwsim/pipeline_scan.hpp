@@ -7,6 +7,8 @@ namespace weft::hwsim {
 template <class Program>
 void Pipeline::draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits) {
     const DrawPlan p = plan(traits);
+    ++counts_.clippingInputPrimitives;
+    counts_.clippingOutputPrimitives += !(s.zeroArea && profile_.clippingOutputSkipsZeroArea);
     if (s.empty()) return;
     const int tx0 = s.x0 / p.tileW * p.tileW, ty0 = s.y0 / p.tileH * p.tileH;
     const int rows = (s.y1 - ty0 + p.tileH - 1) / p.tileH;
@@ -30,7 +32,7 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
     const int x0 = std::max(tx0, s.x0), y0 = std::max(ty0, s.y0);
     const int x1 = std::min(tx0 + p.tileW, s.x1), y1 = std::min(ty0 + p.tileH, s.y1);
     const int qw = p.tileW / 2;
-    std::array<std::uint8_t, 32 * 32> masks;  // tiles are at most 64 x 64
+    std::array<std::uint8_t, 32 * 32> masks, scanned;  // tiles are at most 64 x 64; scanned: covered and inside the scissor
     const TileCoverage coverage = s.spans ? TileCoverage::Partial : classifyTile(s.edges, tx0, ty0, tx0 + p.tileW, ty0 + p.tileH);
     if (coverage == TileCoverage::None) return;
     int live = 0;
@@ -41,12 +43,15 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
                 for (int lane = 0; lane < 4; ++lane)
                     if ((m >> lane & 1u) && !s.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
             c.generated += lanes(m);
+            const unsigned inScissor = p.scissor ? inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
+                                                             state.scissor.y + state.scissor.height) : 0xFu;
+            if (p.statsAtScan) scanned[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m & inScissor);
             if (m && p.stipple && !p.stippleLate && !p.stippleStart) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
-            if (m && p.scissor) m = keep(m, inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
-                                                      state.scissor.y + state.scissor.height), c.rejected[int(Stage::Scissor)]);
+            if (m && p.scissor) m = keep(m, inScissor, c.rejected[int(Stage::Scissor)]);
             masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m);
             live += lanes(m);
         }
+    if (p.statsAtScan) c.fragmentShaderInvocations += statsInvocations(p, scanned.data(), qw, tx0, ty0, x1, y1);
     if (live == 0) return;
     if (p.coarse) cullCoarseTiles(s, p, tx0, ty0, y1, x1, masks.data(), c);
     const int blocks = (p.tileW / p.blockW) * (p.tileH / p.blockH);
@@ -54,11 +59,12 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
     const bool lockStep = p.blockW * p.blockH > 1;
     if (lockStep) std::fill_n(blockMax.begin(), blocks, 0), std::fill_n(blockLanes.begin(), blocks, 0);
     for (int qy = ty0; qy < y1; qy += 2)
-        for (int qx = tx0; qx < x1; qx += 2)
-            if (const unsigned m = masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2]; m && p.simple)
-                shadePixels(s, program, p, qx, qy, m, c);
-            else if (m)
-                shadeQuad(s, program, p, qx, qy, m, c, lockStep ? blockMax.data() : nullptr, blockLanes.data(), tx0, ty0);
+        for (int qx = tx0; qx < x1; qx += 2) {
+            std::uint8_t& m = masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2];  // becomes the lanes that ran
+            if (m && p.simple) m = std::uint8_t(shadePixels(s, program, p, qx, qy, m, c));
+            else if (m) m = std::uint8_t(shadeQuad(s, program, p, qx, qy, m, c, lockStep ? blockMax.data() : nullptr, blockLanes.data(), tx0, ty0));
+        }
+    if (!p.statsAtScan) c.fragmentShaderInvocations += statsInvocations(p, masks.data(), qw, tx0, ty0, x1, y1);
     if (lockStep)
         for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * (p.wholeBlock && blockLanes[b] ? p.blockW * p.blockH : blockLanes[b]);
 }
@@ -66,9 +72,10 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
 // The short path (DrawPlan::simple): each live pixel through an optional
 // early depth test, the program and the write.
 template <class Program>
-void Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
-                           StageCounts& c) const {
+unsigned Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                               StageCounts& c) const {
     const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+    unsigned ran = 0;
     for (int lane = 0; lane < 4; ++lane) {
         if (!(mask >> lane & 1u)) continue;
         const int x = qx + (lane & 1), y = qy + (lane >> 1);
@@ -81,6 +88,7 @@ void Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const Draw
         FragmentOutput o;
         program(Fragment{x, y, z, false}, o);
         ++c.invocations;
+        ran |= 1u << lane;
         c.cost += o.cost;
         if (o.discard) { ++c.discarded; continue; }
         ++c.samplesPassed;
@@ -88,12 +96,13 @@ void Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const Draw
         if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, z, false}, o);
         c.pixelsWritten += colorWritten || p.depthWrites;
     }
+    return ran;
 }
 
 // One 2x2 quad whose covered lanes passed the rasterizer's tests (mask).
 template <class Program>
-void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
-                         StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const {
+unsigned Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                             StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const {
     Pending pending[4];
     float z[4];
     bool noBoundsFailure = true;
@@ -119,10 +128,12 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
             for (int lane = 0; lane < 4 && p.stippleStart; ++lane)
                 if (!stippleKeeps(qx + (lane & 1), qy + (lane >> 1), p.stippleMirrored)) run &= ~(1u << lane);
             c.invocations += lanes(run);
+            return 0;  // for no fragment: softpipe's statistic counts none
         }
         if (killed) c.invocations += p.quad ? 4 : lanes(killed), c.helpers += p.quad ? 4 : lanes(killed);
-        return;
+        return killed;
     }
+    const unsigned ran = mask | killed;  // a kill at the program's start comes after the program started
     FragmentOutput out[4];
     const unsigned shaded = p.quad ? 0xFu : mask | killed;
     for (int lane = 0; lane < 4; ++lane) {
@@ -161,6 +172,29 @@ void Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPl
         if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false}, o);
         c.pixelsWritten += colorWritten || p.depthWrites;
     }
+    return ran;
+}
+
+// A stamp is counted whole when any of its lanes is set; [1, 1] counts lanes.
+inline std::int64_t Pipeline::statsInvocations(const DrawPlan& p, const std::uint8_t* lanesSet, int qw, int tx0, int ty0, int x1, int y1) {
+    const bool perLane = p.stampW * p.stampH == 1;
+    std::int64_t count = 0;
+    std::array<std::uint64_t, 64 * 64 / 2 / 64> hit{};  // one bit per stamp (two pixels or more) of a tile of at most 64x64
+    const int stampsPerRow = p.tileW / p.stampW;
+    for (int qy = ty0; qy < y1; qy += 2)
+        for (int qx = tx0; qx < x1; qx += 2) {
+            const unsigned m = lanesSet[((qy - ty0) / 2) * qw + (qx - tx0) / 2];
+            if (perLane) count += lanes(m);
+            else
+                for (int lane = 0; lane < 4; ++lane)
+                    if (m >> lane & 1u) {
+                        const int stamp = ((qy + (lane >> 1) - ty0) / p.stampH) * stampsPerRow + (qx + (lane & 1) - tx0) / p.stampW;
+                        hit[stamp / 64] |= std::uint64_t(1) << (stamp % 64);
+                    }
+        }
+    if (perLane) return count;
+    for (std::uint64_t word : hit) count += std::popcount(word);
+    return count * p.stampW * p.stampH;
 }
 
 inline Stage Pipeline::stencilDepth(std::size_t idx, float z, const DrawPlan& p, bool early, Pending* pending) const {

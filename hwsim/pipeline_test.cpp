@@ -309,6 +309,44 @@ TEST(HwsimShading, LockStepCostIsLanesTimesLongestPath) {
     EXPECT_EQ(warp.counts().cost, 32 * 10 + (256 - 32));
 }
 
+Profile statistics(int stampW, int stampH, bool atScan) {
+    Profile p = findProfile("mesa-llvmpipe");
+    p.statsStampW = stampW, p.statsStampH = stampH, p.statsCountedAtScan = atScan;
+    return p;
+}
+
+std::int64_t shaderInvocationsOf(const Profile& profile, float depth) {
+    Framebuffer fb(16, 16, 0.5f);
+    Pipeline pipe(fb, profile);
+    pipe.state.depth = {true, CompareFunc::Less, true};
+    pipe.drawRect(1, 1, 5, 5, depth, Flat{});  // 16 pixels over 9 quads and 4 stamps of 4x4
+    return pipe.counts().fragmentShaderInvocations;
+}
+
+TEST(HwsimStatistics, ShaderInvocationsCountPixelsQuadsOrStamps) {
+    EXPECT_EQ(shaderInvocationsOf(statistics(1, 1, false), 0.25f), 16);
+    EXPECT_EQ(shaderInvocationsOf(statistics(2, 2, false), 0.25f), 9 * 4);
+    EXPECT_EQ(shaderInvocationsOf(statistics(4, 4, false), 0.25f), 4 * 16);
+    EXPECT_EQ(shaderInvocationsOf(statistics(4, 4, false), 0.75f), 0);       // all rejected before the program
+    EXPECT_EQ(shaderInvocationsOf(statistics(4, 4, true), 0.75f), 4 * 16);   // counted where coverage is found
+    EXPECT_EQ(shaderInvocationsOf(statistics(1, 1, true), 0.75f), 16);
+}
+
+TEST(HwsimStatistics, ClippingCountsTrianglesAndMayDropZeroArea) {
+    const Vertex flat[3] = {{1, 1, 0}, {5, 1, 0}, {3, 1, 0}};
+    const Vertex real[3] = {{1, 1, 0}, {5, 1, 0}, {3, 5, 0}};
+    for (bool dropsZeroArea : {false, true}) {
+        Profile profile = findProfile("ideal");
+        profile.clippingOutputSkipsZeroArea = dropsZeroArea;
+        Framebuffer fb(8, 8);
+        Pipeline pipe(fb, profile);
+        pipe.drawTriangle(flat, Flat{});
+        pipe.drawTriangle(real, Flat{});
+        EXPECT_EQ(pipe.counts().clippingInputPrimitives, 2);
+        EXPECT_EQ(pipe.counts().clippingOutputPrimitives, dropsZeroArea ? 1 : 2);
+    }
+}
+
 TEST(HwsimBlend, AddsAndMasks) {
     Framebuffer fb(2, 2);
     Pipeline pipe(fb, findProfile("ideal"));

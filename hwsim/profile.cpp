@@ -78,6 +78,21 @@ private:
     std::set<std::string> used_;
 };
 
+// "pixels", "quads" or a stamp [w, h] of powers of two up to 16 (inside
+// the pipeline's 16x16 scan tiles).
+void readStatistics(Reader& r, Profile& p) {
+    const json& counter = r.at("shader_invocations_counter");
+    if (counter == "pixels") p.statsStampW = p.statsStampH = 1;
+    else if (counter == "quads") p.statsStampW = p.statsStampH = 2;
+    else if (counter.is_array() && counter.size() == 2) {
+        p.statsStampW = r.power2("shader_invocations_counter", counter[0], 1, 16);
+        p.statsStampH = r.power2("shader_invocations_counter", counter[1], 1, 16);
+    } else
+        r.fail("shader_invocations_counter", "must be pixels|quads or a stamp [width, height]");
+    p.statsCountedAtScan = r.choice<bool>("shader_invocations_counted_at", {{"scan", true}, {"program", false}});
+    p.clippingOutputSkipsZeroArea = !r.flag("clipping_output_counts_zero_area");
+}
+
 Profile readProfile(Reader& r) {
     Profile p;
     p.name = r.text("name");
@@ -110,6 +125,7 @@ Profile readProfile(Reader& r) {
     p.branchBlockW = r.power2("branch_block", block[0], 1, 64);
     p.branchBlockH = r.power2("branch_block", block[1], 1, 64);
     p.lockStepWholeBlock = r.flagOr("lock_step_whole_block", false);
+    readStatistics(r, p);
     if (p.earlyTests == EarlyTests::CoarseOnly && p.coarseTile == 0)
         r.fail("coarse_tile", "must be set when early_tests is coarse_only");
     if (p.branchBlockW * p.branchBlockH > 1 && (p.branchBlockW < 2 || p.branchBlockH < 2))

@@ -44,6 +44,12 @@ struct Profile {
     bool lockStepWholeBlock = false;          // a block that runs costs all its lanes, not only its shaded quads
     bool polygonStipple = true;               // feature present
     CostModel cost;                           // predicted times (cost_model.hpp)
+    // FRAGMENT_SHADER_INVOCATIONS: w x h for each screen-aligned block of that
+    // size in which a primitive runs the program; [1, 1] counts each
+    // non-helper run, [2, 2] each quad.
+    int statsStampW = 1, statsStampH = 1;
+    bool statsCountedAtScan = false;  // stamps with covered pixels inside the scissor (before stipple and every test) count
+    bool clippingOutputSkipsZeroArea = false;  // CLIPPING_OUTPUT_PRIMITIVES leaves out zero-area triangles
 
     // Throws weft::Error naming the profile and the missing feature.
     void require(bool featurePresent, const std::string& feature, const std::string& who) const;

@@ -10,10 +10,15 @@ namespace {
 TEST(HwsimProfile, ShipsTheDocumentedProfiles) {
     std::vector<std::string> names;
     for (const Profile& p : builtinProfiles()) names.push_back(p.name);
-    EXPECT_EQ(names, (std::vector<std::string>{"geforce-7800", "ideal", "mesa-llvmpipe", "mesa-softpipe", "modern-desktop"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"geforce-7800", "ideal", "mesa-llvmpipe", "mesa-softpipe", "modern-desktop", "nvidia-h200"}));
     EXPECT_EQ(findProfile("mesa-llvmpipe").bounds, BoundsSupport::Unsupported);
     EXPECT_EQ(findProfile("geforce-7800").earlyTests, EarlyTests::CoarseOnly);
     EXPECT_EQ(findProfile("ideal").shading, ShadingGranularity::Pixel);
+    const Profile& llvmpipe = findProfile("mesa-llvmpipe");
+    EXPECT_TRUE(llvmpipe.statsCountedAtScan);
+    EXPECT_EQ(llvmpipe.statsStampW * llvmpipe.statsStampH, 16);
+    EXPECT_TRUE(findProfile("mesa-softpipe").clippingOutputSkipsZeroArea);
+    EXPECT_EQ(findProfile("modern-desktop").statsStampW, 2);  // "quads"
 }
 
 std::string errorOf(const std::string& text) {
@@ -32,7 +37,8 @@ TEST(HwsimProfile, BadFilesNameKeyAndValidValues) {
       "polygon_stipple":true,"stipple_mirrored_when_program_reads_position":false,"early_tests":"per_pixel","early_tests_need_depth_test":false,"early_rejected_quads_still_run":false,"coarse_tile":0,
       "coarse_stencil":false,"depth_bounds":"early","bounds_change_forces_late":false,
       "depth_direction_change_disables_coarse":false,"discard_forces_late":"never","side_effects_force_late":true,"query_counts_at_early_tests":true,
-      "shading":"pixel","branch_block":[1,1])";
+      "shading":"pixel","shader_invocations_counter":"pixels","shader_invocations_counted_at":"program",
+      "clipping_output_counts_zero_area":true,"branch_block":[1,1])";
     EXPECT_EQ(errorOf(base + "}"), "");
     EXPECT_NE(errorOf(base + ",\"colour\":1}").find("unknown key 'colour'"), std::string::npos);
     std::string badStipple = base + "}";
@@ -41,6 +47,11 @@ TEST(HwsimProfile, BadFilesNameKeyAndValidValues) {
     std::string badTile = base + "}";
     badTile.replace(badTile.find("\"coarse_tile\":0"), 15, "\"coarse_tile\":6");
     EXPECT_NE(errorOf(badTile).find("power of two"), std::string::npos);
+    std::string badCounter = base + "}";
+    badCounter.replace(badCounter.find("\"pixels\""), 8, "[4, 3]");
+    EXPECT_NE(errorOf(badCounter).find("'shader_invocations_counter' 3 must be 0 or a power of two"), std::string::npos);
+    badCounter.replace(badCounter.find("[4, 3]"), 6, "\"warps\"");
+    EXPECT_NE(errorOf(badCounter).find("must be pixels|quads or a stamp [width, height]"), std::string::npos);
     EXPECT_THROW(findProfile("voodoo2"), Error);
 }
 

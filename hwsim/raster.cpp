@@ -42,7 +42,7 @@ PrimitiveSetup setupTriangle(const Vertex v[3], FillRule rule, int width, int he
     std::int64_t X[3], Y[3];
     for (int i = 0; i < 3; ++i) X[i] = snap(v[i].x), Y[i] = snap(v[i].y);
     const std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-    if (area == 0) return s;  // empty box
+    if (area == 0) return s.zeroArea = true, s;  // empty box
     int order[3] = {0, 1, 2};
     if (area < 0) std::swap(order[1], order[2]);  // make it counter-clockwise
     s.edges.count = 3;
@@ -127,7 +127,7 @@ PrimitiveSetup setupTriangleSpans(const Vertex v[3], int width, int height, Span
     sortByY(v, lo, mid, hi);
     const Vertex &a = v[lo], &b = v[mid], &c = v[hi];
     const float area = (c.x - a.x) * (b.y - a.y) - (b.x - a.x) * (c.y - a.y);
-    if (!std::isfinite(1.0f / area)) return s.x1 = s.x0, s;
+    if (!std::isfinite(1.0f / area)) return s.x1 = s.x0, s.zeroArea = true, s;
     const float ax = a.x + 0.5f, bx = b.x + 0.5f, ay = a.y - 0.5f, by = b.y - 0.5f, cy = c.y - 0.5f;
     ScanEdge major = scanEdge(a, c, ax, ay, cy), bottom = scanEdge(a, b, ax, ay, by), top = scanEdge(b, c, bx, by, cy);
     if (1.0f / area < 0) {

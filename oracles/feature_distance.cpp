@@ -1,6 +1,7 @@
 #include "oracles/feature_distance.hpp"
 
 #include <openvdb/tools/Morphology.h>
+#include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -25,7 +26,14 @@ float ringDistance(int k, const OracleContext& ctx, float cap) {
 
 }  // namespace
 
-OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx) {
+// The largest channel of one slice's emitted radiance (e x spacing), the
+// change in colour a slice can make, as a slice's opacity is for absorption.
+double sliceEmission(const openvdb::Vec3s& e, double spacing) {
+    return double(std::max({e[0], e[1], e[2]})) * spacing;
+}
+
+// The distance field of a mask (distanceToFeatures without emission).
+OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext& ctx) {
     using namespace openvdb;
     const float minimum = float(ctx.sliceSpacing);
     const float cap = std::max(minimum, float(ctx.sliceSpacing * double(1 << ctx.lmax)));
@@ -54,6 +62,40 @@ OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleCo
     field.constant = cap;
     field.distance = distance;
     return field;
+}
+
+openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx) {
+    using namespace openvdb;
+    const Vec3SGrid& emission = *ctx.volume.emission;
+    MaskGrid::Ptr mask = MaskGrid::create(false);
+    mask->setTransform(emission.transform().copy());
+    mask->tree().topologyUnion(emission.tree());
+    mask->tree().voxelizeActiveTiles();
+    tools::dilateActiveValues(mask->tree(), 1, tools::NN_FACE, tools::EXPAND_TILES);  // the edges of the glow
+    const double threshold2 = ctx.epsilon * ctx.epsilon;
+    tree::LeafManager<MaskTree> leaves(mask->tree());
+    leaves.foreach([&](MaskTree::LeafNodeType& leaf, std::size_t) {
+        Vec3SGrid::ConstAccessor acc = emission.getConstAccessor();
+        for (auto it = leaf.beginValueOn(); it; ++it) {
+            double g2 = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                Coord lo = it.getCoord(), hi = lo;
+                --lo[axis], ++hi[axis];
+                const double g = 0.5 * (sliceEmission(acc.getValue(hi), ctx.sliceSpacing) - sliceEmission(acc.getValue(lo), ctx.sliceSpacing));
+                g2 += g * g;
+            }
+            if (!(g2 > threshold2)) leaf.setValueOff(it.pos());
+        }
+    });
+    tools::pruneInactive(mask->tree());
+    return mask;
+}
+
+OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx) {
+    if (!ctx.volume.emission) return distanceField(features, ctx);
+    openvdb::MaskGrid::Ptr merged = features.deepCopy();
+    merged->tree().topologyUnion(emissionFeatures(ctx)->tree());
+    return distanceField(*merged, ctx);
 }
 
 std::vector<BrickRange> brickRanges(const openvdb::FloatGrid& grid) {

@@ -18,8 +18,17 @@ double sliceOpacity(const Volume& volume, double spacing, float value);
 // The sampling-distance field of a feature mask, in voxels: ctx.sliceSpacing
 // on and next to features, growing by one voxel per voxel of Chebyshev
 // distance, capped (and constant outside the stored band) at
-// 2^lmax * sliceSpacing.
+// 2^lmax * sliceSpacing. An emitting volume's emission features
+// (emissionFeatures) join the mask: every precomputed oracle keeps samples
+// dense where the glow changes, whatever it reads from the density.
 OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx);
+
+// Voxels where one slice's emitted radiance (the largest channel of the
+// emission grid x the slice spacing) has a gradient above ctx.epsilon per
+// voxel, the emission's counterpart of gradient_alpha's opacity gradient.
+// Linear interpolation between distant samples is exact where emission is
+// constant, so only its changes are features. Needs ctx.volume.emission.
+openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx);
 
 // The value range of one region of the grid: an 8^3 leaf brick with a
 // one-voxel apron (so a step between neighbouring bricks shows in both), or

@@ -1,6 +1,7 @@
 #include "oracles/oracle_cache.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <list>
 #include <mutex>
@@ -24,6 +25,36 @@ void addNumber(std::string& key, double v) {
     char text[32];
     std::snprintf(text, sizeof text, "%.17g|", v);
     key += text;
+}
+
+// The emission grid by its content: it is built from the temperature and
+// emission grids (possibly of other files) and the scene's emission
+// settings, so its values are what an oracle depends on. One pass, eight
+// bytes per step.
+std::uint64_t emissionHash(const openvdb::Vec3SGrid& grid) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    auto mix = [&](const void* data, std::size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < bytes; i += 8) {
+            std::uint64_t word = 0;
+            std::memcpy(&word, p + i, std::min<std::size_t>(8, bytes - i));
+            h = (h ^ word) * 0x100000001b3ull;
+            h ^= h >> 29;
+        }
+    };
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+        const openvdb::Coord origin = leaf->origin();
+        mix(&origin, sizeof origin);
+        mix(leaf->buffer().data(), sizeof(openvdb::Vec3s) * leaf->SIZE);
+        mix(&leaf->getValueMask(), sizeof(leaf->getValueMask()));
+    }
+    for (auto tile = grid.tree().cbeginValueOn(); tile; ++tile) {
+        if (tile.isVoxelValue()) continue;
+        const openvdb::Coord c = tile.getCoord();
+        const openvdb::Vec3s v = *tile;
+        mix(&c, sizeof c), mix(&v, sizeof v);
+    }
+    return h;
 }
 
 // Whether the volume is identified by its file (else by its tree).
@@ -52,6 +83,11 @@ std::string keyOf(const OracleInfo& oracle, const OracleContext& ctx) {
     for (const TfPoint& p : v.tf.points()) {
         addNumber(key, p.s), addNumber(key, p.extinction);
         for (double c : p.color) addNumber(key, c);
+    }
+    if (v.emission) {
+        char text[40];
+        std::snprintf(text, sizeof text, "emission:%016llx|", static_cast<unsigned long long>(emissionHash(*v.emission)));
+        key += text;
     }
     addNumber(key, ctx.sliceSpacing), addNumber(key, ctx.lmax), addNumber(key, ctx.epsilon);
     return key;

@@ -9,6 +9,8 @@
 // modification time (as the sweep's reference cache does) and its transform,
 // so every frame's fresh load of an unchanged file finds it; any other
 // volume (procedural, built in code) by its tree, which the entry keeps alive.
+// An emitting volume's emission grid (which the oracles read too) joins the
+// key by a hash of its content: other emission settings or grids, another field.
 #include "oracles/oracle.hpp"
 
 namespace weft {

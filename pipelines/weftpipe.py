@@ -112,12 +112,39 @@ def quote(cmd):
     return " ".join(shlex.quote(c) for c in cmd)
 
 
+def weft_module(weft):
+    """The weft Python module built beside the weft executable (build/bin), or None.
+
+    None when this interpreter cannot load it (another Python version, a weft
+    installed without its module): the scripts then ask the command.
+    """
+    found = shutil.which(weft) if os.path.sep not in weft else weft
+    if not found:
+        return None
+    folder = os.path.dirname(os.path.realpath(found))
+    if folder not in sys.path:
+        sys.path.insert(0, folder)
+    try:
+        import weft as module
+    except ImportError:
+        return None
+    return module if hasattr(module, "check") else None
+
+
 def frame_status(weft, paths):
-    """{path: 'ok' | 'missing' | 'corrupt: why'} for rendered frames, from `weft check`.
+    """{path: 'ok' | 'missing' | 'corrupt: why'} for rendered frames.
 
     A frame is complete when its EXR reads in full and carries
     weft:complete = 1, which weft writes into every finished render and merge.
+    Asked of the weft module (weft.check) where it loads, else of `weft check`.
     """
+    module = weft_module(weft)
+    if module is not None:
+        return module.check(list(paths))
+    return _frame_status_from_command(weft, paths)
+
+
+def _frame_status_from_command(weft, paths):
     status = {}
     for i in range(0, len(paths), 200):
         chunk = paths[i:i + 200]

@@ -61,6 +61,10 @@ struct TechniqueInfo {
     // Its speed/accuracy knobs (weft tune): a key (a parameter, or spp) and
     // a coarse grid of values, cheapest first.
     std::vector<TradeKnob> knobs;
+    // Whether it scatters light in volumes, reading their colour grids
+    // (Volume::color); the host refuses a colour grid a scene names for
+    // the others.
+    bool scatters = false;
 };
 
 // Throws when the scene holds volumes or meshes the technique does not

@@ -23,6 +23,7 @@
 #include "core/image/image_compare.hpp"
 #include "core/image/image_io.hpp"
 #include "core/scene/scene.hpp"
+#include "plugins/host/frame_check.hpp"
 #include "plugins/host/help_text.hpp"
 #include "plugins/host/render_job.hpp"
 #include "plugins/technique.hpp"
@@ -247,4 +248,16 @@ PYBIND11_MODULE(weft, m) {
         return d;
     }, py::arg("test"), py::arg("reference"), py::arg("threshold") = 0.004,
           "the metrics of `weft diff TEST REFERENCE`: per channel and overall RMSE, relMSE, PSNR, SSIM, max abs");
+    m.def("check", [](const std::vector<std::string>& paths) {
+        std::vector<std::string> states;
+        {
+            py::gil_scoped_release release;
+            for (const std::string& p : paths) states.push_back(frameState(p));
+        }
+        py::dict d;
+        for (std::size_t i = 0; i < paths.size(); ++i) d[py::str(paths[i])] = states[i];
+        return d;
+    }, py::arg("paths"),
+          "what `weft check` says of rendered frames: {path: 'ok' | 'missing' | 'corrupt: why'}; "
+          "ok when the whole image reads and carries weft:complete = 1");
 }

@@ -35,6 +35,8 @@ public:
                                                   : deltaTrackingTransmittance(ray_, rng, collisions);
     }
     std::int64_t lookups() const { return ray_.lookups; }
+    // The shutter time of the shadow rays that follow (moving volumes).
+    void setTime(double frames) { ray_.setTime(frames); }
 
     std::int64_t traced = 0, collisions = 0;
 

@@ -71,6 +71,13 @@ void requireNoEmission(const Scene& scene, const std::string& technique);
 // For techniques that render one instant of a volume: an Error naming the
 // first volume that moves by its velocity while the shutter is open.
 void requireStillVolumes(const Scene& scene, const std::string& technique);
+// For techniques that do not scatter light in volumes (a colour grid tints
+// the scattering only): an Error naming the first volume whose colour grid
+// the scene file names. A bare .vdb's colour, found by its conventional
+// name, is not an error: unusedColorGrids says it in one line instead.
+void requireNoColorGrids(const Scene& scene, const std::string& technique);
+// "" or one line naming the volumes whose colour grid the technique leaves unused.
+std::string unusedColorGrids(const Scene& scene, const std::string& technique);
 
 // Loads a scene from a .json file, a bare .obj/.ply mesh (framed like a bare
 // .vdb, lit by its emissive materials or else by a light over the camera), a bare .vdb (framed like vdb_render does,

@@ -2,6 +2,7 @@
 // key, a wrong type or a value out of range is an error at file:line:column.
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 #include "core/sampling/analytic2d.hpp"
@@ -191,21 +192,31 @@ fs::path scenePath(const std::string& text, const fs::path& baseDir, std::option
     return file.is_relative() ? baseDir / file : file;
 }
 
-// "grids": {"density": NAME, "temperature": NAME | {"file": F, "grid": NAME}, "emission": ..., "velocity": ...}.
+// The keys "grids" accepts: the roles and their aliases ("albedo").
+std::set<std::string> gridKeys() {
+    std::set<std::string> keys(gridRoles().begin(), gridRoles().end());
+    for (const auto& [alias, role] : gridRoleAliases()) keys.insert(alias);
+    return keys;
+}
+
+// "grids": {"density": NAME, "temperature": NAME | {"file": F, "grid": NAME}, "emission": ..., "velocity": ..., "color": ...}.
 std::map<std::string, GridSource> readGridSources(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
-    const ObjectReader g(r.doc(), r.child("grids"), "grids", {gridRoles().begin(), gridRoles().end()});
+    const ObjectReader g(r.doc(), r.child("grids"), "grids", gridKeys());
     std::map<std::string, GridSource> sources;
-    for (const std::string& role : gridRoles()) {
-        if (!g.has(role)) continue;
-        const json& v = g.value()[role];
+    for (const std::string& key : gridKeys()) {
+        if (!g.has(key)) continue;
+        const auto alias = gridRoleAliases().find(key);
+        const std::string role = alias == gridRoleAliases().end() ? key : alias->second;
+        if (sources.count(role)) g.fail(key, "grids." + key + " names the " + role + " grid again; give it once");
+        const json& v = g.value()[key];
         if (v.is_string()) {
             sources[role].grid = v.get<std::string>();
             continue;
         }
-        if (role == "density") g.fail(role, "grids.density must be a grid name of the volume's 'file'");
-        if (!v.is_object()) g.fail(role, "grids." + role + " must be a grid name or {\"file\": ..., \"grid\": ...}");
-        const ObjectReader o(r.doc(), g.child(role), "grids." + role, {"file", "grid"});
-        if (!o.has("file")) o.failAt(o.pointer(), "grids." + role + " needs a 'file' (or give the grid's name alone)");
+        if (role == "density") g.fail(key, "grids.density must be a grid name of the volume's 'file'");
+        if (!v.is_object()) g.fail(key, "grids." + key + " must be a grid name or {\"file\": ..., \"grid\": ...}");
+        const ObjectReader o(r.doc(), g.child(key), "grids." + key, {"file", "grid"});
+        if (!o.has("file")) o.failAt(o.pointer(), "grids." + key + " needs a 'file' (or give the grid's name alone)");
         sources[role] = {scenePath(o.string("file", ""), baseDir, frame).string(), o.string("grid", "")};
     }
     return sources;
@@ -230,19 +241,43 @@ struct EmissionGrids {
     openvdb::FloatGrid::Ptr temperature, emission;
 };
 
+// Where a role's grid comes from: its own file, a grid (by name) of the
+// volume's file, or nowhere.
+std::optional<GridSource> roleSource(const std::string& role, const std::map<std::string, std::string>& names,
+                                     const std::map<std::string, GridSource>& own, const std::string& volumeFile) {
+    if (const auto it = own.find(role); it != own.end()) return it->second;
+    if (const auto n = names.find(role); n != names.end()) return GridSource{volumeFile, n->second};
+    return std::nullopt;
+}
+
+// Volume::grids notes what a role read ("temperature=heat", and the file when its own).
+void noteGrid(Volume& vol, const std::string& role, const std::string& grid, const std::string& file, const std::string& volumeFile) {
+    vol.grids += " " + role + "=" + grid + (file == volumeFile ? "" : " (" + file + ")");
+}
+
 EmissionGrids readEmissionGrids(Volume& vol, const std::map<std::string, std::string>& names, const std::map<std::string, GridSource>& own,
                                 const std::string& volumeFile) {
     EmissionGrids out;
     for (const std::string role : {"temperature", "emission"}) {
-        std::string file = volumeFile, grid;
-        if (const auto it = own.find(role); it != own.end()) file = it->second.file, grid = it->second.grid;
-        else if (const auto n = names.find(role); n != names.end()) grid = n->second;
-        else continue;
-        auto g = inIndexSpaceOf(readFloatGrid(file, grid, role), vol.grid->transform());
-        vol.grids += " " + role + "=" + g->getName() + (file == volumeFile ? "" : " (" + file + ")");
+        const std::optional<GridSource> src = roleSource(role, names, own, volumeFile);
+        if (!src) continue;
+        auto g = inIndexSpaceOf(readFloatGrid(src->file, src->grid, role), vol.grid->transform());
+        noteGrid(vol, role, g->getName(), src->file, volumeFile);
         (role == std::string("temperature") ? out.temperature : out.emission) = g;
     }
     return out;
+}
+
+// The colour grid named for the volume (null when none) as tints in the
+// density's index space, under the density's transform as read (the
+// caller moves it with the density's placement).
+openvdb::Vec3SGrid::Ptr readColorGrid(Volume& vol, const std::map<std::string, std::string>& names, const std::map<std::string, GridSource>& own,
+                                      const std::string& volumeFile) {
+    const std::optional<GridSource> src = roleSource("color", names, own, volumeFile);
+    if (!src) return nullptr;
+    const openvdb::GridBase::Ptr color = readFloatOrVec3Grid(src->file, src->grid, "color");
+    noteGrid(vol, "color", color->getName(), src->file, volumeFile);
+    return buildColorGrid(*color, vol.grid->transform());
 }
 
 // "motion": {"velocity_scale", "fps"}.
@@ -257,12 +292,10 @@ MotionSettings readMotion(const ObjectReader& r) {
 // the density's index space, and Volume::grids saying what was read.
 void readMotionGrid(Volume& vol, const std::map<std::string, std::string>& names, const std::map<std::string, GridSource>& own,
                     const MotionSettings& settings) {
-    std::string file = vol.source, grid;
-    if (const auto it = own.find("velocity"); it != own.end()) file = it->second.file, grid = it->second.grid;
-    else if (const auto n = names.find("velocity"); n != names.end()) grid = n->second;
-    else return;
-    const auto velocity = readVec3Grid(file, grid, "velocity");
-    vol.grids += " velocity=" + velocity->getName() + (file == vol.source ? "" : " (" + file + ")");
+    const std::optional<GridSource> src = roleSource("velocity", names, own, vol.source);
+    if (!src) return;
+    const auto velocity = readVec3Grid(src->file, src->grid, "velocity");
+    noteGrid(vol, "velocity", velocity->getName(), src->file, vol.source);
     vol.motion = buildMotionGrid(velocity, vol.grid->transform(), settings, vol.maxMotion);
 }
 
@@ -300,6 +333,7 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
     const MotionSettings motion =
         r.has("motion") ? readMotion(ObjectReader(r.doc(), r.child("motion"), "motion", {"velocity_scale", "fps"})) : MotionSettings{};
     EmissionGrids emitting;
+    openvdb::Vec3SGrid::Ptr color;
     try {
         vol.source = fromFile ? file.string() : "procedural:" + kind;
         vol.grid = fromFile ? readFloatGrid(vol.source, grid) : makeProceduralGrid(kind, res, seed);
@@ -310,6 +344,7 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
             vol.grids += " temperature=" + emitting.temperature->getName();
         }
         readMotionGrid(vol, names, own, motion);  // before placement: velocities are in the file's world space
+        color = readColorGrid(vol, names, own, vol.source);
     } catch (const Error& e) {
         r.fail(fromFile ? "file" : "procedural", e.what());
     }
@@ -319,6 +354,8 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
     vol.name = vol.grid->getName();
     const Placement placement = readPlacement(r);
     if (!placement.identity()) vol.grid = placeGrid(vol.grid, placement.matrix());
+    if (color) color->setTransform(vol.grid->transform().copy());  // its index space is the density's
+    vol.color = color;
     try {
         buildEmission(vol, emitting, settings);
     } catch (const Error& e) {
@@ -462,6 +499,7 @@ Scene loadBareVdb(const std::string& path, double aspect, const std::string& gri
     vol.name = vol.grid->getName();
     vol.grids = "density=" + vol.name;
     buildEmission(vol, readEmissionGrids(vol, names, {}, path), EmissionSettings{});
+    vol.color = readColorGrid(vol, names, {}, path);
     vol.gridsPicked = names.size() > 1;
     computeStatistics(vol);
     vol.tf = TransferFunction::defaultFor(vol.valueMin, vol.valueMax);
@@ -533,7 +571,22 @@ void requireStillVolumes(const Scene& scene, const std::string& technique) {
     for (const Volume& v : scene.volumes)
         if (v.motion)
             throw Error(technique + " does not blur volumes by their velocity; volume '" + v.source + "' moves (" + v.grids +
-                        ") while the shutter is open: render it with volume.raymarch, or close the shutter (camera.shutter [0, 0])");
+                        ") while the shutter is open: render it with volume.raymarch, volume.singlescatter or mesh.pathtrace, or close the shutter (camera.shutter [0, 0])");
+}
+
+void requireNoColorGrids(const Scene& scene, const std::string& technique) {
+    for (const Volume& v : scene.volumes)
+        if (v.color && !v.gridsPicked)
+            throw Error(technique + " does not scatter light, so it would not use the colour grid of volume '" + v.source + "' (" + v.grids +
+                        "): render it with volume.singlescatter or mesh.pathtrace, or leave the colour out of 'grids'");
+}
+
+std::string unusedColorGrids(const Scene& scene, const std::string& technique) {
+    std::string sources;
+    for (const Volume& v : scene.volumes)
+        if (v.color) sources += (sources.empty() ? "'" : ", '") + v.source + "'";
+    if (sources.empty()) return "";
+    return technique + " does not scatter light: the colour grid of " + sources + " is not used";
 }
 
 void requireNoEmission(const Scene& scene, const std::string& technique) {

@@ -89,8 +89,9 @@ Medium::Medium(const std::vector<Volume>& volumes) {
         Entry e{&v, v.medium.absorb * perWorld, v.medium.scatter * perWorld, 0.0, nullptr, nullptr};
         e.coefficientMax = maxChannel(e.absorb + e.scatter);
         if (!(e.coefficientMax > 0) && !v.emission) continue;  // nothing to meet
-        e.bricks = densityBricks(*v.grid);
-        if (v.emission) e.emissiveBricks = emissiveBricks(*v.emission), e.emissionRate = perWorld;
+        const int reach = v.motion ? brickReach(v.motionReach) : 0;  // a moving volume's bricks bound where it moves
+        e.bricks = dilatedBrickBounds(*densityBricks(*v.grid), reach);
+        if (v.emission) e.emissiveBricks = dilatedBrickBounds(*emissiveBricks(*v.emission), reach), e.emissionRate = perWorld;
         volumes_.push_back(e);
     }
     if (volumes_.size() < 2) return;
@@ -105,11 +106,17 @@ MediumRay::MediumRay(const Medium& medium) : medium_(medium) {
         brickAccessors_.push_back(e.bricks->getConstAccessor());
         emissionAccessors_.emplace_back();
         if (e.volume->emission) emissionAccessors_.back().emplace(e.volume->emission->getConstAccessor());
+        colorAccessors_.emplace_back();
+        if (e.volume->color) colorAccessors_.back().emplace(e.volume->color->getConstAccessor());
+        emplaceMotion(motions_.emplace_back(), *e.volume);
     }
     for (std::size_t i = 0; i < accessors_.size(); ++i) {  // after the last push_back: they point into the accessors
-        samplers_.emplace_back(accessors_[i], medium.volumes_[i].volume->grid->transform());
+        const Volume& v = *medium.volumes_[i].volume;
+        samplers_.emplace_back(accessors_[i], v.grid->transform());
         emissionSamplers_.emplace_back();
-        if (emissionAccessors_[i]) emissionSamplers_.back().emplace(*emissionAccessors_[i], medium.volumes_[i].volume->emission->transform());
+        if (emissionAccessors_[i]) emissionSamplers_.back().emplace(*emissionAccessors_[i], v.emission->transform());
+        colorSamplers_.emplace_back();
+        if (colorAccessors_[i]) colorSamplers_.back().emplace(*colorAccessors_[i], v.color->transform());
     }
 }
 
@@ -189,11 +196,13 @@ MediumCoefficients MediumRay::at(double t) {
     for (const MediumSegment& s : segments_) {
         if (t < s.t0 || t >= s.t1) continue;
         const Medium::Entry& e = medium_.volumes_[s.volume];
-        const Vec3d ijk = s.indexOrigin + s.indexStep * t;
+        Vec3d ijk = s.indexOrigin + s.indexStep * t;
+        if (motions_[s.volume] && time_ != 0) ijk = motions_[s.volume]->advected(ijk, time_);
         const double rho = usableDensity(samplers_[s.volume].isSample(ijk));
         ++lookups;
-        const Vec3d scatter = e.scatter * rho;
-        c.extinction += e.absorb * rho + scatter;
+        Vec3d scatter = e.scatter * rho;
+        c.extinction += e.absorb * rho + scatter;  // the colour moves scattering to absorption: the sum stays
+        if (colorSamplers_[s.volume]) scatter *= toVec3d(colorSamplers_[s.volume]->isSample(ijk));
         c.scattering += scatter;
         if (emissionSamplers_[s.volume]) c.emission += toVec3d(emissionSamplers_[s.volume]->isSample(ijk)) * e.emissionRate;
         lobes_.push_back({e.volume->medium.g, scatter});

@@ -6,7 +6,15 @@
 // over the volumes that overlap there:
 //   sigma = density (trilinear, NaN/Inf and negatives read as 0)
 //           x medium coefficient / voxelLength()
-// (Volume::medium is per voxel length per unit density).
+// (Volume::medium is per voxel length per unit density), the scattering
+// tinted by the volume's colour grid (Volume::color: scattering x colour,
+// the extinction unchanged, core/volume/volume_grids.hpp).
+//
+// Moving volumes (velocity motion blur, core/volume/volume_motion.hpp): a
+// MediumRay carries a shutter time, and its lookups of a moving volume read
+// every grid at the point advected back along the motion; each brick's
+// majorant then covers every brick within the volume's reach, so the bound
+// holds at any time in the shutter.
 //
 // Volumes are found through a flat list of their world bounds: scenes hold
 // a handful of volumes, and each test is one box clip in index space.
@@ -19,6 +27,7 @@
 // least one collision per voxel length, so emission is met even where the
 // density is zero (see sampleFreeFlight).
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <vector>
 
@@ -28,6 +37,7 @@
 #include "core/volume/volume_bvh.hpp"
 #include "core/base/rng.hpp"
 #include "core/volume/volume.hpp"
+#include "core/volume/volume_motion.hpp"
 
 namespace weft {
 
@@ -70,6 +80,9 @@ public:
 
     // Clips the world ray (origin, unit dir) to every volume within [0, tMax).
     void reset(const Vec3d& origin, const Vec3d& dir, double tMax);
+    // The shutter time (frames from the frame) of the rays that follow:
+    // moving volumes are looked up where they are then.
+    void setTime(double frames) { time_ = frames; }
     bool empty() const { return segments_.empty(); }
     double end() const { return end_; }
     const std::vector<MediumSegment>& segments() const { return segments_; }
@@ -95,6 +108,10 @@ private:
     std::vector<LeafSampler> samplers_;  // through accessors_ (a move keeps their addresses)
     std::vector<std::optional<openvdb::Vec3SGrid::ConstAccessor>> emissionAccessors_;
     std::vector<std::optional<Vec3LeafSampler>> emissionSamplers_;  // through emissionAccessors_
+    std::vector<std::optional<openvdb::Vec3SGrid::ConstAccessor>> colorAccessors_;
+    std::vector<std::optional<Vec3LeafSampler>> colorSamplers_;  // through colorAccessors_
+    std::deque<std::optional<MotionLookup>> motions_;          // built in place
+    double time_ = 0;
     void addSegment(std::uint32_t volume, const Vec3d& origin, const Vec3d& dir, double tMax);
 
     std::vector<MediumSegment> segments_;

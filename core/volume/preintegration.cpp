@@ -132,35 +132,74 @@ struct PieceWeights {
     double depth = 0, w0 = 0, w1 = 0;
 };
 
-PieceWeights pieceWeights(double tau0, double tau1, double h) {
-    PieceWeights out;
-    out.depth = 0.5 * (tau0 + tau1) * h;
-    if (!(out.depth > 0)) return out;
-    const double a = tau0 * h, b = 0.5 * (tau1 - tau0) * h;
-    const double depthEnd = std::min(out.depth, kDepthCut);
+// Gauss-Legendre nodes over [0, uEnd] of a piece whose optical depth is
+// D(u) = a u + b u^2 (total `depth`), on sub-intervals of equal-ish depth:
+// node(u, weight, expm1(-D(u))) for each. Returns uEnd: 1, or where the
+// depth reaches kDepthCut (beyond it the piece is opaque).
+template <class Node>
+double depthQuadrature(double a, double b, double depth, Node&& node) {
+    const double depthEnd = std::min(depth, kDepthCut);
     const GaussRule& rule = gaussRule();
-    double mean = 0, opaque = 0;  // integrals of exp(-D(u)) and 1 - exp(-D(u)) over [0, 1]
     double uLo = 0, depthLo = 0;
     for (bool last = false; !last;) {
         const double depthHi = std::min(depthEnd, depthLo + kDepthStep + kDepthGrowth * depthLo);
         last = depthHi >= depthEnd;
-        const double uHi = last && depthEnd == out.depth ? 1.0 : depthRoot(a, b, depthHi);
+        const double uHi = last && depthEnd == depth ? 1.0 : depthRoot(a, b, depthHi);
         const double half = 0.5 * (uHi - uLo), mid = 0.5 * (uHi + uLo);
         for (int i = 0; i < kGaussOrder; ++i) {
             const double u = mid + half * rule.node[i];
-            const double em = std::expm1(-u * (a + b * u));
-            mean += half * rule.weight[i] * (1 + em);
-            opaque -= half * rule.weight[i] * em;
+            node(u, half * rule.weight[i], std::expm1(-u * (a + b * u)));
         }
         uLo = uHi, depthLo = depthHi;
     }
-    opaque += 1 - uLo;  // past the depth cut the piece is opaque
+    return uLo;
+}
+
+PieceWeights pieceWeights(double tau0, double tau1, double h) {
+    PieceWeights out;
+    out.depth = 0.5 * (tau0 + tau1) * h;
+    if (!(out.depth > 0)) return out;
+    double mean = 0, opaque = 0;  // integrals of exp(-D(u)) and 1 - exp(-D(u)) over [0, 1]
+    const double uEnd = depthQuadrature(tau0 * h, 0.5 * (tau1 - tau0) * h, out.depth, [&](double, double w, double em) {
+        mean += w * (1 + em);
+        opaque -= w * em;
+    });
+    opaque += 1 - uEnd;  // past the depth cut the piece is opaque
     const double alpha = -std::expm1(-out.depth);
     out.w0 = std::clamp(opaque, 0.0, alpha);
     // For thin pieces alpha - (1 - M) keeps relative precision; for thick ones M - exp(-depth) does.
     const double w1 = out.depth < 1 ? alpha - opaque : mean - std::exp(-out.depth);
     out.w1 = std::clamp(w1, 0.0, alpha - out.w0);
     return out;
+}
+
+// The emission weights of a piece from x0 to x0 + h of a segment of length
+// L, divided by L (f0 = x0 / L, fh = h / L), for the light reaching it
+// unattenuated: int (1 - x/L) exp(-D) dx / L and int (x/L) exp(-D) dx / L.
+struct EmissionMoments {
+    double front = 0, back = 0;
+};
+
+EmissionMoments pieceEmission(double tau0, double tau1, double h, double f0, double fh) {
+    const double depth = 0.5 * (tau0 + tau1) * h;
+    if (!(depth > 0)) return {fh * (1 - f0 - 0.5 * fh), fh * (f0 + 0.5 * fh)};  // transparent: the ramp's area
+    EmissionMoments m;
+    depthQuadrature(tau0 * h, 0.5 * (tau1 - tau0) * h, depth, [&](double u, double w, double em) {
+        const double t = w * (1 + em), back = f0 + u * fh;
+        m.front += t * std::max(0.0, 1 - back), m.back += t * back;
+    });
+    return {m.front * fh, m.back * fh};
+}
+
+// The emission moments of a segment of constant extinction, depth d = tau L,
+// divided by L: int_0^1 (1 - u) exp(-d u) du and int_0^1 u exp(-d u) du.
+// Series where the closed forms cancel (error < 1e-10), their limits where
+// d^2 would overflow.
+EmissionMoments constantEmission(double d) {
+    if (d < 1e-2) return {0.5 - d / 6 + d * d / 24 - d * d * d / 120, 0.5 - d / 3 + d * d / 8 - d * d * d / 30};
+    if (d > 1e6) return {(1 - 1 / d) / d, 1 / d / d};
+    const double e = std::exp(-d);
+    return {(d + std::expm1(-d)) / (d * d), (-std::expm1(-d) - d * e) / (d * d)};
 }
 
 // Walks a segment through the transfer function pieces, front to back.
@@ -172,7 +211,28 @@ public:
         sFront = cleanS(sFront), sBack = cleanS(sBack);
         if (!(length > 0)) return {0, 0, 0, 0};
         if (sFront == sBack) return constantSegment(sFront, length);
-        return sFront < sBack ? walk<true>(sFront, sBack, length) : walk<false>(sFront, sBack, length);
+        std::array<double, 3> color{0, 0, 0};
+        const double depth = walk(sFront, sBack, length, [&](const TfPoint& in, const TfPoint& out, double, double h, double transmittance) {
+            const PieceWeights w = pieceWeights(in.extinction, out.extinction, h);
+            for (int c = 0; c < 3; ++c) color[c] += transmittance * (w.w0 * in.color[c] + w.w1 * out.color[c]);
+            return w.depth;
+        });
+        const double alpha = -std::expm1(-depth);
+        return {float(color[0]), float(color[1]), float(color[2]), float(alpha)};
+    }
+
+    // The emission weights divided by the length (table entries).
+    EmissionMoments emission(double sFront, double sBack, double length) const {
+        sFront = cleanS(sFront), sBack = cleanS(sBack);
+        if (!(length > 0)) return {0.5, 0.5};
+        if (sFront == sBack) return constantEmission(cleanExtinction(tf_.atS(sFront).extinction) * length);
+        EmissionMoments m;
+        walk(sFront, sBack, length, [&](const TfPoint& in, const TfPoint& out, double x0, double h, double transmittance) {
+            const EmissionMoments piece = pieceEmission(in.extinction, out.extinction, h, x0 / length, h / length);
+            m.front += transmittance * piece.front, m.back += transmittance * piece.back;
+            return 0.5 * (in.extinction + out.extinction) * h;
+        });
+        return m;
     }
 
 private:
@@ -183,39 +243,38 @@ private:
         return {float(p.color[0] * alpha), float(p.color[1] * alpha), float(p.color[2] * alpha), float(alpha)};
     }
 
-    template <bool Increasing>
-    PreintSample walk(double sFront, double sBack, double length) const;
+    // piece(in, out, x0, h, transmittance) for each piece of the segment the
+    // light still reaches, returning its optical depth; the segment's depth.
+    template <class Piece>
+    double walk(double sFront, double sBack, double length, Piece&& piece) const {
+        return sFront < sBack ? walkIn<true>(sFront, sBack, length, piece) : walkIn<false>(sFront, sBack, length, piece);
+    }
+    template <bool Increasing, class Piece>
+    double walkIn(double sFront, double sBack, double length, Piece& piece) const;
 
     const TransferFunction& tf_;
     std::vector<TfPiece> pieces_;
 };
 
-template <bool Increasing>
-PreintSample SegmentIntegrator::walk(double sFront, double sBack, double length) const {
+template <bool Increasing, class Piece>
+double SegmentIntegrator::walkIn(double sFront, double sBack, double length, Piece& piece) const {
     const double lo = std::min(sFront, sBack), hi = std::max(sFront, sBack), span = hi - lo;
-    std::array<double, 3> color{0, 0, 0};
     double depth = 0, xPrev = 0;
     const int n = int(pieces_.size());
     for (int k = 0; k < n; ++k) {
-        const TfPiece& piece = pieces_[Increasing ? k : n - 1 - k];
-        const double a = std::max(piece.s0, lo), b = std::min(piece.s1, hi);
+        const TfPiece& p = pieces_[Increasing ? k : n - 1 - k];
+        const double a = std::max(p.s0, lo), b = std::min(p.s1, hi);
         if (!(b > a)) continue;
         const double sIn = Increasing ? a : b, sOut = Increasing ? b : a;
         // Distance along the segment where it leaves this piece; exactly L at the back.
         const double x = sOut == sBack ? length : length * (std::abs(sOut - sFront) / span);
-        const TfPoint in = piece.at(sIn), out = piece.at(sOut);
+        const TfPoint in = p.at(sIn), out = p.at(sOut);
         const double transmittance = std::exp(-depth);
-        if (transmittance < kNegligibleTransmittance) {
-            depth += 0.5 * (in.extinction + out.extinction) * (x - xPrev);
-        } else {
-            const PieceWeights w = pieceWeights(in.extinction, out.extinction, x - xPrev);
-            for (int c = 0; c < 3; ++c) color[c] += transmittance * (w.w0 * in.color[c] + w.w1 * out.color[c]);
-            depth += w.depth;
-        }
+        if (transmittance < kNegligibleTransmittance) depth += 0.5 * (in.extinction + out.extinction) * (x - xPrev);
+        else depth += piece(in, out, xPrev, x - xPrev, transmittance);
         xPrev = x;
     }
-    const double alpha = -std::expm1(-depth);
-    return {float(color[0]), float(color[1]), float(color[2]), float(alpha)};
+    return depth;
 }
 
 float quantize8(float v) {
@@ -237,8 +296,14 @@ PreintSample PreintegrationTable::integrateSegment(const TransferFunction& tf, d
     return SegmentIntegrator(tf).integrate(sFront, sBack, length);
 }
 
+EmissionWeights PreintegrationTable::integrateEmission(const TransferFunction& tf, double sFront, double sBack, double length) {
+    if (!(length >= 0)) throw Error("pre-integration: segment length must be >= 0, got " + std::to_string(length));
+    const EmissionMoments m = SegmentIntegrator(tf).emission(sFront, sBack, length);
+    return {float(m.front * length), float(m.back * length)};
+}
+
 PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector<double> lengths, int resolution,
-                                         PreintPrecision precision)
+                                         PreintPrecision precision, bool withEmission)
     : lengths_(std::move(lengths)), resolution_(resolution), precision_(precision) {
     if (lengths_.empty()) throw Error("pre-integration table: needs at least one segment length");
     for (double l : lengths_)
@@ -250,7 +315,14 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector
                     "], got " + std::to_string(resolution_));
 
     const SegmentIntegrator integrator(tf);
+    auto emissionEntry = [&](const SegmentIntegrator& in, double sFront, double sBack, double length) {
+        const EmissionMoments m = in.emission(sFront, sBack, length);
+        EmissionWeights w{float(m.front), float(m.back)};  // both in [0, 1]: the same 8-bit emulation applies
+        if (precision_ == PreintPrecision::Bits8) w = {quantize8(w.front), quantize8(w.back)};
+        return w;
+    };
     table_.resize(lengths_.size() * size_t(resolution_) * size_t(resolution_));
+    if (withEmission) emission_.resize(table_.size());
     const int rows = lengthCount() * resolution_;
     const double toS = 1.0 / (resolution_ - 1);
     // Every entry depends only on its own indices, so the result is the same for any thread count.
@@ -262,6 +334,7 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector
                 PreintSample e = integrator.integrate(front * toS, back * toS, lengths_[li]);
                 if (precision_ == PreintPrecision::Bits8) e = {quantize8(e.r), quantize8(e.g), quantize8(e.b), quantize8(e.a)};
                 out[back] = e;
+                if (withEmission) emission_[size_t(row) * resolution_ + back] = emissionEntry(integrator, front * toS, back * toS, lengths_[li]);
             }
         }
     });
@@ -273,23 +346,43 @@ double PreintegrationTable::length(int index) const {
     return lengths_[index];
 }
 
-PreintSample PreintegrationTable::lookup(int lengthIndex, float sFront, float sBack) const {
-    if (lengthIndex < 0 || lengthIndex >= lengthCount())
-        throw Error("pre-integration table: length index " + std::to_string(lengthIndex) + " out of range");
-    const float x = gridCoord(sFront, resolution_), y = gridCoord(sBack, resolution_);
-    const int i = std::min(int(x), resolution_ - 2), j = std::min(int(y), resolution_ - 2);
-    const float tx = x - float(i), ty = y - float(j);
-    const PreintSample& e00 = entry(lengthIndex, i, j);
-    const PreintSample& e01 = entry(lengthIndex, i, j + 1);
-    const PreintSample& e10 = entry(lengthIndex, i + 1, j);
-    const PreintSample& e11 = entry(lengthIndex, i + 1, j + 1);
+namespace {
+
+// The four table entries around (sFront, sBack) and their bilinear weights.
+struct Bilinear {
+    std::size_t i00, i01, i10, i11;
+    float tx, ty;
     // (1 - t) a + t b returns an entry exactly at t = 0 and t = 1.
-    auto mix = [&](float v00, float v01, float v10, float v11) {
+    float mix(float v00, float v01, float v10, float v11) const {
         const float front0 = (1 - ty) * v00 + ty * v01, front1 = (1 - ty) * v10 + ty * v11;
         return (1 - tx) * front0 + tx * front1;
-    };
-    return {mix(e00.r, e01.r, e10.r, e11.r), mix(e00.g, e01.g, e10.g, e11.g), mix(e00.b, e01.b, e10.b, e11.b),
-            mix(e00.a, e01.a, e10.a, e11.a)};
+    }
+};
+
+Bilinear bilinear(int lengthIndex, int lengthCount, int resolution, float sFront, float sBack) {
+    if (lengthIndex < 0 || lengthIndex >= lengthCount)
+        throw Error("pre-integration table: length index " + std::to_string(lengthIndex) + " out of range");
+    const float x = gridCoord(sFront, resolution), y = gridCoord(sBack, resolution);
+    const int i = std::min(int(x), resolution - 2), j = std::min(int(y), resolution - 2);
+    const std::size_t base = (std::size_t(lengthIndex) * resolution + i) * resolution + j;
+    return {base, base + 1, base + resolution, base + resolution + 1, x - float(i), y - float(j)};
+}
+
+}  // namespace
+
+PreintSample PreintegrationTable::lookup(int lengthIndex, float sFront, float sBack) const {
+    const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
+    const PreintSample &e00 = table_[b.i00], &e01 = table_[b.i01], &e10 = table_[b.i10], &e11 = table_[b.i11];
+    return {b.mix(e00.r, e01.r, e10.r, e11.r), b.mix(e00.g, e01.g, e10.g, e11.g), b.mix(e00.b, e01.b, e10.b, e11.b),
+            b.mix(e00.a, e01.a, e10.a, e11.a)};
+}
+
+EmissionWeights PreintegrationTable::lookupEmission(int lengthIndex, float sFront, float sBack) const {
+    if (emission_.empty()) throw Error("internal: pre-integration table built without emission");
+    const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
+    const EmissionWeights &e00 = emission_[b.i00], &e01 = emission_[b.i01], &e10 = emission_[b.i10], &e11 = emission_[b.i11];
+    const float length = float(lengths_[lengthIndex]);
+    return {b.mix(e00.front, e01.front, e10.front, e11.front) * length, b.mix(e00.back, e01.back, e10.back, e11.back) * length};
 }
 
 }  // namespace weft

@@ -19,6 +19,20 @@
 // piece, which is integrated by Gauss-Legendre quadrature on sub-intervals of
 // equal optical depth. Everything is double precision; the table stores the
 // results for a grid of (s_front, s_back) per segment length.
+//
+// Emission (a volume's emission grid, radiance per voxel length, read at
+// both ends of a segment) is not a function of s, so it cannot sit in the
+// table itself. Assumed linear along the segment, from e_front to e_back,
+// its contribution splits into two weights that depend only on s_front,
+// s_back and L, through the same transmittance T(x) as the colour:
+//
+//   E = e_front * W_front + e_back * W_back
+//   W_front = int_0^L (1 - x/L) T(x) dx,  W_back = int_0^L (x/L) T(x) dx
+//
+// An emitting render builds them beside the colour (as W / L, in [0, 1]);
+// one without emission builds nothing more. For constant extinction tau
+// and e_front == e_back, E = e (1 - exp(-tau L)) / tau, the slab's closed
+// form and volume.raymarch's segment.
 #include <cstddef>
 #include <vector>
 
@@ -33,19 +47,26 @@ struct PreintSample {
     float r, g, b, a;  // opacity-weighted (premultiplied) colour and opacity of one segment
 };
 
+// W_front and W_back above, in voxels (the segment's length unit).
+struct EmissionWeights {
+    float front, back;
+};
+
 class PreintegrationTable {
 public:
     // Built only for the segment lengths (in voxels) a render uses, e.g.
     // spacing * 2^l for l = 0..lmax. resolution = entries per s axis
     // (s_front and s_back both in [0, 1]). Throws weft::Error for no lengths,
     // a length that is not positive and finite, or resolution outside [2, 4096].
+    // withEmission: also the emission weights (lookupEmission).
     PreintegrationTable(const TransferFunction& tf, std::vector<double> lengths, int resolution = 256,
-                        PreintPrecision precision = PreintPrecision::Float32);
+                        PreintPrecision precision = PreintPrecision::Float32, bool withEmission = false);
 
     int lengthCount() const { return int(lengths_.size()); }
     double length(int index) const;
     int resolution() const { return resolution_; }
     PreintPrecision precision() const { return precision_; }
+    bool hasEmission() const { return !emission_.empty(); }
 
     // s in [0, 1] (tf.normalize(value)); bilinear interpolation between
     // entries; out-of-range s clamped, NaN treated as 0.
@@ -56,15 +77,18 @@ public:
     // a negative or NaN length throws weft::Error, length 0 gives nothing.
     static PreintSample integrateSegment(const TransferFunction& tf, double sFront, double sBack, double length);
 
-private:
-    const PreintSample& entry(int lengthIndex, int front, int back) const {
-        return table_[(std::size_t(lengthIndex) * resolution_ + front) * resolution_ + back];
-    }
+    // The emission weights, interpolated as lookup() does; only for a table
+    // built withEmission (else weft::Error).
+    EmissionWeights lookupEmission(int lengthIndex, float sFront, float sBack) const;
+    // The exact emission weights (as integrateSegment; also fills the table).
+    static EmissionWeights integrateEmission(const TransferFunction& tf, double sFront, double sBack, double length);
 
+private:
     std::vector<double> lengths_;
     int resolution_ = 0;
     PreintPrecision precision_ = PreintPrecision::Float32;
     std::vector<PreintSample> table_;  // [length][front][back]
+    std::vector<EmissionWeights> emission_;  // the same layout, divided by the length; empty without emission
 };
 
 }  // namespace weft

@@ -5,15 +5,15 @@
 namespace weft {
 
 SegmentTables::SegmentTables(const TransferFunction& tf, double spacing, int maxSlices, int resolution,
-                             PreintPrecision precision)
-    : tf_(tf), spacing_(spacing), resolution_(resolution), precision_(precision),
+                             PreintPrecision precision, bool withEmission)
+    : tf_(tf), spacing_(spacing), resolution_(resolution), precision_(precision), withEmission_(withEmission),
       once_(new tbb::collaborative_once_flag[maxSlices + 1]), tables_(maxSlices + 1) {}
 
 const PreintegrationTable& SegmentTables::forSlices(int slices) {
     if (slices < 1 || slices >= int(tables_.size()))
         throw Error("internal: segment of " + std::to_string(slices) + " slices outside the table range");
     tbb::collaborative_call_once(once_[slices], [&] {
-        tables_[slices] = std::make_unique<PreintegrationTable>(tf_, std::vector<double>{spacing_ * slices}, resolution_, precision_);
+        tables_[slices] = std::make_unique<PreintegrationTable>(tf_, std::vector<double>{spacing_ * slices}, resolution_, precision_, withEmission_);
     });
     return *tables_[slices];
 }

@@ -14,15 +14,19 @@ namespace weft {
 
 class SegmentTables {
 public:
-    SegmentTables(const TransferFunction& tf, double spacing, int maxSlices, int resolution, PreintPrecision precision);
+    // withEmission: every table also holds the emission weights.
+    SegmentTables(const TransferFunction& tf, double spacing, int maxSlices, int resolution, PreintPrecision precision,
+                  bool withEmission = false);
     const PreintegrationTable& forSlices(int slices);
     int builtCount() const;
+    bool withEmission() const { return withEmission_; }
 
 private:
     const TransferFunction& tf_;
     double spacing_;
     int resolution_;
     PreintPrecision precision_;
+    bool withEmission_;
     std::unique_ptr<tbb::collaborative_once_flag[]> once_;
     std::vector<std::unique_ptr<PreintegrationTable>> tables_;
 };

@@ -2,6 +2,8 @@
 
 namespace weft {
 
+const Counter kEmissionTables{"preintegration.emission_tables", "pre-integration tables that hold emission weights (emitting scenes only)"};
+
 namespace {
 
 bool sameTransferFunction(const TransferFunction& a, const TransferFunction& b) {
@@ -41,14 +43,29 @@ std::vector<SliceVolume> makeSliceVolumes(const std::vector<Volume>& volumes) {
 SliceTables::SliceTables(const std::vector<SliceVolume>& volumes, double spacing, int maxSlices, int resolution,
                          PreintPrecision precision)
     : sets_(volumes.size()) {
+    std::vector<bool> emits(volumes.size(), false);  // a set shared by an emitting volume holds emission weights
+    for (const SliceVolume& v : volumes) emits[v.tables] = emits[v.tables] || v.volume->emission != nullptr;
     for (const SliceVolume& v : volumes)
         if (!sets_[v.tables])
-            sets_[v.tables] = std::make_unique<SegmentTables>(v.volume->tf, spacing * v.lengthScale, maxSlices, resolution, precision);
+            sets_[v.tables] = std::make_unique<SegmentTables>(v.volume->tf, spacing * v.lengthScale, maxSlices, resolution, precision,
+                                                              emits[v.tables]);
+}
+
+bool sceneEmits(const std::vector<SliceVolume>& volumes) {
+    for (const SliceVolume& v : volumes)
+        if (v.volume->emission) return true;
+    return false;
 }
 
 int SliceTables::builtCount() const {
     int n = 0;
     for (const auto& s : sets_) n += s ? s->builtCount() : 0;
+    return n;
+}
+
+int SliceTables::emissionBuiltCount() const {
+    int n = 0;
+    for (const auto& s : sets_) n += s && s->withEmission() ? s->builtCount() : 0;
     return n;
 }
 

@@ -73,11 +73,11 @@ BBoxd Volume::worldBox() const {
 
 namespace {
 
-// The grid `gridName` of a .vdb, of type GridT; gridName empty: "density"
-// if present, else the first grid. `needs` words the type error ("float
-// grids", "a float grid").
-template <class GridT>
-typename GridT::Ptr readTypedGrid(const std::string& path, const std::string& gridName, const std::string& role, const std::string& needs) {
+// The grid `gridName` of a .vdb whose value type `accepts` takes;
+// gridName empty: "density" if present, else the first grid. `needs` words
+// the type error ("float grids", "a float grid").
+openvdb::GridBase::Ptr readGridOf(const std::string& path, const std::string& gridName, const std::string& role, const std::string& needs,
+                                  bool (*accepts)(const openvdb::GridBase&)) {
     initVdb();
     requireRegularFile(path, "volume");
     preflightVdb(path);  // lengths and counts OpenVDB would trust
@@ -105,7 +105,7 @@ typename GridT::Ptr readTypedGrid(const std::string& path, const std::string& gr
     } catch (const std::exception&) {
         throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt or cut short");
     }
-    if (!openvdb::gridPtrCast<GridT>(header))
+    if (!accepts(*header))
         throw Error("volume '" + path + "': " + what + " holds " + header->valueType() + " values; " +
                     (role.empty() ? "weft renders " + needs : role + " needs " + needs));
     if (!role.empty() && header->getGridClass() == openvdb::GRID_LEVEL_SET)
@@ -119,19 +119,30 @@ typename GridT::Ptr readTypedGrid(const std::string& path, const std::string& gr
     } catch (const std::exception&) {
         throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt or cut short");
     }
-    auto grid = openvdb::gridPtrCast<GridT>(base);
-    if (!grid) throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt");
-    return grid;
+    if (!base || !accepts(*base)) throw Error("volume '" + path + "': " + what + " cannot be read: the file is corrupt");
+    return base;
 }
+
+template <class GridT>
+bool isA(const openvdb::GridBase& grid) {
+    return grid.isType<GridT>();
+}
+
+bool isColor(const openvdb::GridBase& grid) { return isA<openvdb::FloatGrid>(grid) || isA<openvdb::Vec3SGrid>(grid); }
 
 }  // namespace
 
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName, const std::string& role) {
-    return readTypedGrid<openvdb::FloatGrid>(path, gridName, role, role.empty() ? "float grids" : "a float grid");
+    return openvdb::gridPtrCast<openvdb::FloatGrid>(
+        readGridOf(path, gridName, role, role.empty() ? "float grids" : "a float grid", &isA<openvdb::FloatGrid>));
 }
 
 openvdb::Vec3SGrid::Ptr readVec3Grid(const std::string& path, const std::string& gridName, const std::string& role) {
-    return readTypedGrid<openvdb::Vec3SGrid>(path, gridName, role, "a vec3s grid");
+    return openvdb::gridPtrCast<openvdb::Vec3SGrid>(readGridOf(path, gridName, role, "a vec3s grid", &isA<openvdb::Vec3SGrid>));
+}
+
+openvdb::GridBase::Ptr readFloatOrVec3Grid(const std::string& path, const std::string& gridName, const std::string& role) {
+    return readGridOf(path, gridName, role, "a vec3s or float grid", &isColor);
 }
 
 void computeStatistics(Volume& volume) {

@@ -43,6 +43,11 @@ struct Volume {
     // volume moves.
     double motionReach = 0;
     double maxMotion = 0;  // the largest |motion|, index units per frame
+    // The scattering tint (core/volume/volume_grids.hpp): RGB in [0, 1] per
+    // point in the density's index space, 1 outside its active voxels;
+    // it multiplies the medium's scattering and moves the rest to
+    // absorption, so extinction stays the density's. Null: untinted.
+    openvdb::Vec3SGrid::ConstPtr color;
     std::string grids;         // what each role read: "density=density temperature=heat"
     bool gridsPicked = false;  // a bare .vdb's roles, found by their conventional names
     TransferFunction tf;
@@ -87,6 +92,8 @@ void initVdb();
 openvdb::FloatGrid::Ptr readFloatGrid(const std::string& path, const std::string& gridName, const std::string& role = "");
 // Reads the vec3s grid `gridName` for `role` ("velocity"); errors as above.
 openvdb::Vec3SGrid::Ptr readVec3Grid(const std::string& path, const std::string& gridName, const std::string& role);
+// Reads a vec3s or float grid `gridName` for `role` ("color"); errors as above.
+openvdb::GridBase::Ptr readFloatOrVec3Grid(const std::string& path, const std::string& gridName, const std::string& role);
 
 // Fills the value range (of the density) and the active bounding box (of
 // density and emission); once per volume: both walk the whole tree.

@@ -43,17 +43,22 @@ struct EmissionOf {
 }  // namespace
 
 const std::vector<std::string>& gridRoles() {
-    static const std::vector<std::string> roles{"density", "temperature", "emission", "velocity"};
+    static const std::vector<std::string> roles{"density", "temperature", "emission", "velocity", "color"};
     return roles;
 }
 
 const std::vector<std::string>& conventionalGridNames(const std::string& role) {
     static const std::map<std::string, std::vector<std::string>> names{
         {"density", {"density"}}, {"temperature", {"temperature", "heat"}}, {"emission", {"emission", "flame", "flames"}},
-        {"velocity", {"velocity", "vel", "v"}}};
+        {"velocity", {"velocity", "vel", "v"}}, {"color", {"color", "albedo", "Cd"}}};
     static const std::vector<std::string> none;
     const auto it = names.find(role);
     return it == names.end() ? none : it->second;
+}
+
+const std::map<std::string, std::string>& gridRoleAliases() {
+    static const std::map<std::string, std::string> aliases{{"albedo", "color"}};
+    return aliases;
 }
 
 openvdb::FloatGrid::Ptr readRoleGrid(const std::string& path, const std::string& gridName, const std::string& role) {
@@ -83,13 +88,18 @@ std::map<std::string, std::string> pickConventionalGrids(const std::string& path
     return picked;
 }
 
-openvdb::FloatGrid::Ptr inIndexSpaceOf(openvdb::FloatGrid::Ptr grid, const openvdb::math::Transform& target) {
+template <class GridT>
+typename GridT::Ptr inIndexSpaceOf(typename GridT::Ptr grid, const openvdb::math::Transform& target) {
     if (grid->transform() == target) return grid;
-    auto out = openvdb::FloatGrid::create(grid->background());
+    auto out = GridT::create(grid->background());
     out->setName(grid->getName());
     out->setTransform(target.copy());
     openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*grid, *out);
     return out;
+}
+
+openvdb::FloatGrid::Ptr inIndexSpaceOf(openvdb::FloatGrid::Ptr grid, const openvdb::math::Transform& target) {
+    return inIndexSpaceOf<openvdb::FloatGrid>(std::move(grid), target);
 }
 
 openvdb::Vec3SGrid::Ptr buildEmissionGrid(const openvdb::FloatGrid* temperature, const openvdb::FloatGrid* emission,
@@ -123,14 +133,8 @@ openvdb::Vec3SGrid::Ptr buildEmissionGrid(const openvdb::FloatGrid* temperature,
 
 openvdb::Vec3SGrid::Ptr buildMotionGrid(openvdb::Vec3SGrid::Ptr velocity, const openvdb::math::Transform& density,
                                         const MotionSettings& settings, double& maxMotion) {
-    openvdb::Vec3SGrid::Ptr motion;
-    if (velocity->transform() == density) {
-        motion = velocity->deepCopy();
-    } else {
-        motion = openvdb::Vec3SGrid::create(velocity->background());
-        motion->setTransform(density.copy());
-        openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*velocity, *motion);
-    }
+    openvdb::Vec3SGrid::Ptr motion =
+        velocity->transform() == density ? velocity->deepCopy() : inIndexSpaceOf<openvdb::Vec3SGrid>(velocity, density);
     motion->setName("motion");
     const auto& map = *density.baseMap();
     const double perFrame = settings.velocityScale / settings.fps;
@@ -149,6 +153,43 @@ openvdb::Vec3SGrid::Ptr buildMotionGrid(openvdb::Vec3SGrid::Ptr velocity, const 
     for (auto it = motion->tree().beginValueAll(); it; ++it) it.setValue(toMotion(*it));
     motion->tree().root().setBackground(toMotion(velocity->background()), /*updateChildNodes=*/false);
     return motion;
+}
+
+namespace {
+
+// A colour value as a tint: each channel clamped to [0, 1]; NaN (a broken
+// cache) is 1, the untinted medium.
+openvdb::Vec3s tintOf(const openvdb::Vec3s& c) {
+    openvdb::Vec3s t;
+    for (int i = 0; i < 3; ++i) t[i] = std::isnan(c[i]) ? 1.0f : std::clamp(c[i], 0.0f, 1.0f);
+    return t;
+}
+
+// The grid's values as tints under its own transform: active values
+// clamped, every inactive value and the background 1, so that trilinear
+// lookups near the active region's edge blend towards untinted, not black.
+template <class GridT, class ToVec3>
+openvdb::Vec3SGrid::Ptr tintsOf(const GridT& color, ToVec3 toVec3) {
+    auto out = openvdb::Vec3SGrid::create(openvdb::Vec3s(1.0f));
+    out->setName(color.getName());
+    out->setTransform(color.transform().copy());
+    out->tree().topologyUnion(color.tree());
+    const auto source = color.getConstAccessor();
+    for (auto it = out->tree().beginValueAll(); it; ++it)
+        it.setValue(it.isValueOn() ? tintOf(toVec3(source.getValue(it.getCoord()))) : openvdb::Vec3s(1.0f));
+    return out;
+}
+
+}  // namespace
+
+openvdb::Vec3SGrid::Ptr buildColorGrid(const openvdb::GridBase& color, const openvdb::math::Transform& density) {
+    openvdb::Vec3SGrid::Ptr tints;
+    if (const auto* rgb = dynamic_cast<const openvdb::Vec3SGrid*>(&color)) tints = tintsOf(*rgb, [](const openvdb::Vec3s& v) { return v; });
+    else if (const auto* grey = dynamic_cast<const openvdb::FloatGrid*>(&color)) tints = tintsOf(*grey, [](float v) { return openvdb::Vec3s(v); });
+    else throw Error("the color grid '" + color.getName() + "' holds " + color.valueType() + " values; color needs a vec3s or float grid");
+    tints = inIndexSpaceOf<openvdb::Vec3SGrid>(tints, density);
+    tints->setName("color");
+    return tints;
 }
 
 double motionReachOf(double maxMotion, double shutterOpen, double shutterClose) {

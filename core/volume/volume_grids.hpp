@@ -25,6 +25,18 @@
 // affine voxel shape works. A velocity grid of its own transform is
 // resampled into the density's index space as it is (collocated; a
 // staggered grid's half-voxel offset is not undone).
+//
+// Colour (alias albedo; a vec3s grid, or a float grid for a grey tint,
+// like Houdini's "Cd") tints the scattering per point, as the "color" of
+// Arnold's and Cycles' volume shaders: with the medium's absorb a and
+// scatter s (per unit density) and the colour c in [0, 1] at a point,
+//   scatter' = s c     absorb' = a + s (1 - c)
+// so the extinction a + s is the density's alone. Light that the colour
+// withholds is absorbed, not passed through: the majorants, transmittance
+// caches and empty-space bounds built from density stay valid, shadows and
+// alpha do not change with colour, and only the scattered light is tinted.
+// Values are clamped to [0, 1] (an albedo above 1 would create light);
+// NaN reads as 1; outside the grid's active voxels the medium is untinted.
 #include <map>
 #include <string>
 #include <vector>
@@ -35,8 +47,10 @@
 
 namespace weft {
 
-// The roles, in order: density, temperature, emission, velocity.
+// The roles, in order: density, temperature, emission, velocity, color.
 const std::vector<std::string>& gridRoles();
+// Other words a scene's "grids" may use for a role: "albedo" for "color".
+const std::map<std::string, std::string>& gridRoleAliases();
 // A role's conventional grid names, first preferred ("temperature", "heat").
 const std::vector<std::string>& conventionalGridNames(const std::string& role);
 
@@ -83,6 +97,12 @@ struct MotionSettings {
 // voxels per frame is shortened to it.
 openvdb::Vec3SGrid::Ptr buildMotionGrid(openvdb::Vec3SGrid::Ptr velocity, const openvdb::math::Transform& density,
                                         const MotionSettings& settings, double& maxMotion);
+
+// Volume::color from a colour grid (vec3s, or float: a grey tint) under
+// its own transform: each channel clamped to [0, 1], NaN read as 1, every
+// inactive value and the background 1, resampled into the density's
+// index space `density` when its transform differs.
+openvdb::Vec3SGrid::Ptr buildColorGrid(const openvdb::GridBase& color, const openvdb::math::Transform& density);
 
 // The farthest (index units) a lookup is advected while the shutter is open
 // (maxMotion x the shutter's largest |t|), capped at kMaxMotionReach so

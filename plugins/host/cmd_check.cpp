@@ -1,34 +1,15 @@
 // weft check FRAME...: whether rendered frames are complete, for farm
-// scripts. Prints "STATE<TAB>PATH" per file, STATE one of ok, missing,
-// "corrupt: WHY"; a frame is ok when the whole image reads back and it
-// carries weft:complete = 1 (written last into every finished render).
+// scripts. Prints "STATE<TAB>PATH" per file, STATE as frameState
+// (frame_check.hpp) says: ok, missing or "corrupt: WHY".
 // Exit status 0 when all are ok, 2 otherwise.
 #include <cstdio>
-#include <filesystem>
 
-#include "core/base/error.hpp"
-#include "core/image/image_io.hpp"
 #include "plugins/host/command.hpp"
+#include "plugins/host/frame_check.hpp"
 
 namespace weft {
 
 namespace {
-
-std::string frameState(const std::string& path) {
-    if (!std::filesystem::exists(path)) return "missing";
-    Metadata md;
-    try {
-        readImage(path, &md);  // reads every pixel: a truncated file fails here
-    } catch (const std::exception& e) {
-        std::string why = e.what();
-        for (char& c : why)
-            if (c == '\n' || c == '\t') c = ' ';
-        return "corrupt: " + why;
-    }
-    for (const auto& [k, v] : md)
-        if (k == "weft:complete" && v == "1") return "ok";
-    return "corrupt: no weft:complete attribute";
-}
 
 const CommandRegistrar registrar{{"check", 17, [](CLI::App& app) {
     auto* cmd = app.add_subcommand("check", "report whether rendered frames are complete (ok / missing / corrupt)");

@@ -217,8 +217,9 @@ CheckedRender checkRender(const RenderRequest& r, const Scene& scene) {
     checkTechniqueContent(info, scene);
     if (scene.cameraMoves() && !info.motionBlur)
         throw Error("the camera moves while the shutter is open, and " + info.name +
-                    " renders one instant: use volume.raymarch or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
+                    " renders one instant: use volume.raymarch, volume.singlescatter or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
     if (!info.motionBlur) requireStillVolumes(scene, info.name);
+    if (!info.scatters) requireNoColorGrids(scene, info.name);
     return c;
 }
 
@@ -243,6 +244,8 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     auto technique = inStage(stage, [&] { return info.create(scene, params); });
     for (const Volume& v : scene.volumes)
         if (v.gridsPicked) std::fprintf(stderr, "weft: %s: grids found by their names: %s\n", v.source.c_str(), v.grids.c_str());
+    if (const std::string unused = info.scatters ? "" : unusedColorGrids(scene, name); !unused.empty())
+        std::fprintf(stderr, "weft: warning: %s\n", unused.c_str());
 
     RenderOutcome out;
     {

@@ -39,6 +39,10 @@
 //   shadow_tracking  delta | ratio: the transmittance estimator of shadow
 //              rays through volumes
 //
+// Velocity motion blur: every vertex and shadow ray of a camera sample's
+// path sees the moving volumes at that sample's shutter time
+// (core/volume/medium.hpp); the camera moves along its keys as well.
+//
 // Counters: rays.camera, image.samples, rays.bounce, rays.shadow; with volumes also
 // volume.lookups (density reads) and volume.collisions (tentative
 // collisions of free flights and shadow rays).
@@ -130,7 +134,6 @@ public:
     PathTracer(const Scene& scene, const ParamSet& p)
         : maxDepth_(int(p.getInt("max_depth"))), rrDepth_(int(p.getInt("rr_depth"))), plane_(planeOptions(p)),
           model_(Brdf::modelNamed(p.getString("glossy"))), tracking_(shadowTrackingNamed(p.getString("shadow_tracking"))) {
-        requireStillVolumes(scene, "mesh.pathtrace");  // camera motion blur only
         requireLights(scene);
     }
 
@@ -177,6 +180,9 @@ private:
                 const bool opaque = scene.volumes.empty() || accel.intersect(o, d, 0.0f, std::numeric_limits<float>::infinity()).valid();
                 return {L.x(), L.y(), L.z(), opaque ? 1.0f : 0.0f};
             }
+            const double time = scene.shutter.frameTime(0, c.time);  // moving volumes: the free flights' and shadow rays' time
+            row->flight.setTime(time);
+            row->shadow.setTime(time);
             Rng rng(hashCombine(hashCombine(s.seed ^ kMediumStream, (std::uint64_t(std::uint32_t(c.px)) << 32) | std::uint32_t(c.py)),
                                 std::uint64_t(c.index)));
             const PathSample p = self.radianceThroughMedia(scene, accel, o, d, sampler, rng, *row, counts);
@@ -301,6 +307,7 @@ const TechniqueRegistrar registrar{{
     /*bytesPerPixel=*/32,
     /*reference=*/{"mesh.pathtrace", {}, 4096},
     /*knobs=*/{{"spp", {"1", "4", "16", "64", "256"}}},
+    /*scatters=*/true,
 }};
 
 }  // namespace

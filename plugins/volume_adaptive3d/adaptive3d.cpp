@@ -18,6 +18,16 @@
 // this slice's sample replaces it (as the depth values of Figure 9 do), so
 // every level-0 sample is composited.
 //
+// Emission: each sample reads the volume's emission grid too (synthesised
+// like the data on coarser levels) and a segment's emitted radiance, linear
+// between its ends and absorbed along it, comes from the table's emission
+// weights (core/volume/preintegration.hpp), as in volume.preint; they are
+// built only when a volume emits. The oracles see emission as a feature
+// where one slice's emitted radiance changes by more than epsilon per voxel
+// (oracles/feature_distance.hpp), so a glowing region is never skipped as
+// if empty; the oracle cache keys an emitting volume by its emission too.
+// Velocity (moving volumes) is not rendered.
+//
 // Meshes: each pixel's ray ends at its first surface (Embree, built only
 // when the scene has meshes). Skipping never passes it (SliceWorker::
 // surfaceBound): a pixel composites on its last slice in front of the
@@ -30,7 +40,8 @@
 // Counters (the paper's operations): volume.samples (SAMPLE DATA),
 // oracle.samples (SAMPLE ORACLE), synthesis.ops (SYNTHESIZE DATA+ORACLE of
 // one pixel), composite.ops (ACCUMULATE COLOR of a segment), slices; with
-// meshes also rays.surface and rays.shadow. oracle.built / oracle.reused say
+// meshes also rays.surface and rays.shadow; with emission also
+// preintegration.emission_tables. oracle.built / oracle.reused say
 // whether each volume's oracle field was built or found built by an earlier
 // render of the process (oracles/oracle_cache.hpp: frames, sweeps).
 #include <tbb/blocked_range.h>
@@ -55,7 +66,7 @@ namespace {
 
 const Counter kPreintegrationTables{"preintegration.tables", "pre-integration tables built"};
 const Counter kOracleBuilt{"oracle.built", "oracle fields built by this render (one per volume)"};
-const Counter kOracleReused{"oracle.reused", "oracle fields reused from an earlier render of this process (same volume, transfer function, spacing, lmax, epsilon)"};
+const Counter kOracleReused{"oracle.reused", "oracle fields reused from an earlier render of this process (same volume, emission, transfer function, spacing, lmax, epsilon)"};
 
 struct AdaptiveParams {
     SliceParams slice;
@@ -70,7 +81,6 @@ public:
         : params_{readSliceParams(p), p.getString("oracle"), int(p.getInt("lmax")), p.getFloat("epsilon")},
           oracle_(oracles().get(params_.oracle)) {
         requireSliceableVolume(scene, "volume.adaptive3d");
-        requireNoEmission(scene, "volume.adaptive3d");
         requireSurfaceLights(scene, "volume.adaptive3d");
     }
 
@@ -105,6 +115,7 @@ public:
         progress.finish();
         ctx.counters.add(kSlices, slices.imax + 1);
         ctx.counters.add(kPreintegrationTables, tables.builtCount());
+        if (const int n = tables.emissionBuiltCount()) ctx.counters.add(kEmissionTables, n);
         Image image = pyramid.image(s.width, s.height);
         if (accel) shadeSurfaces(scene, *accel, hits, pw, image, ctx);
         return image;

@@ -28,6 +28,7 @@ Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, 
         PyramidLevel level;
         level.rays = makeLevelRays(camera, volumes, slices, l, paddedWidth, paddedHeight, imageWidth, imageHeight);
         level.s = backgrounds(volumes, level.rays.dir.size());
+        if (sceneEmits(volumes)) level.e.assign(level.s.size(), Vec3f(0.0f));
         level.d.assign(level.rays.dir.size(), 1.0f);
         level.tilesX = (level.rays.width + kTile - 1) / kTile;
         level.tilesY = (level.rays.height + kTile - 1) / kTile;
@@ -37,6 +38,7 @@ Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, 
     }
     const std::size_t n = levels_[0].rays.dir.size();
     sPrev = backgrounds(volumes, n);
+    if (sceneEmits(volumes)) ePrev.assign(sPrev.size(), Vec3f(0.0f));
     iPrev.assign(n, 0);
     color.assign(n, SegmentCompositor{});
 }
@@ -85,7 +87,8 @@ SliceWorker::SliceWorker(SliceContext& sc) : sc_(sc), data_(sc.volumes), segment
         const OracleField& f = sc.fields[k];
         oracleAccessors_.push_back(f.distance ? f.distance->getConstAccessor() : sc.volumes[k].volume->grid->getConstAccessor());
     }
-    one_ = sc.volumes.size() == 1 && sc.volumes[0].reference && sc.volumes[0].lengthScale == 1;
+    emits_ = sceneEmits(sc.volumes);
+    one_ = sc.volumes.size() == 1 && sc.volumes[0].reference && sc.volumes[0].lengthScale == 1 && !emits_;
     sampler0_ = &data_.sampler(0);
     oracle0_ = &oracleAccessors_[0];
     background0_ = data_.background(0);
@@ -115,9 +118,26 @@ template <bool kOne, bool kSurfaces>
     } else {
         const std::size_t fn = fine.rays.dir.size(), cn = coarse.rays.dir.size();
         for (std::size_t k = 0; k < sc_.volumes.size(); ++k) fine.s[k * fn + idx] = blend(coarse.s.data() + k * cn);
+        if (emits_) {
+            const int parents[4] = {ya * cw + xa, ya * cw + xb, yb * cw + xa, yb * cw + xb};
+            synthesizeEmission(pyramid, l, idx, parents, fx, fy);
+        }
     }
     if constexpr (kSurfaces) fine.d[idx] = surfaceBound(pyramid, l, idx, slice, fine.d[idx]);
     ++syntheses_;
+}
+
+// The same weights for the emission of each volume (parents: top-left,
+// top-right, bottom-left, bottom-right on the coarser level).
+void SliceWorker::synthesizeEmission(Pyramid& pyramid, int l, int idx, const int* parents, float fx, float fy) {
+    PyramidLevel& fine = pyramid.level(l);
+    const PyramidLevel& coarse = pyramid.level(l + 1);
+    const std::size_t fn = fine.rays.dir.size(), cn = coarse.rays.dir.size();
+    for (std::size_t k = 0; k < sc_.volumes.size(); ++k) {
+        const Vec3f* v = coarse.e.data() + k * cn;
+        const Vec3f top = v[parents[0]] * (1 - fx) + v[parents[1]] * fx, bottom = v[parents[2]] * (1 - fx) + v[parents[3]] * fx;
+        fine.e[k * fn + idx] = top * (1 - fy) + bottom * fy;
+    }
 }
 
 float SliceWorker::oracleDistance(int k, const Vec3d& p) {
@@ -167,6 +187,7 @@ float SliceWorker::sampleVolumes(PyramidLevel& level, int l, int idx, int slice,
         float dVoxels = oracleDistance(k, p);
         oracleSamples_ += inside || sc_.fields[k].distance;  // a constant oracle costs nothing outside
         float& s = level.s[k * pixels + idx];
+        if (emits_) level.e[k * pixels + idx] = inside ? data_.emission(k, p) : Vec3f(0.0f);
         if (inside) {
             s = data_.sample(k, p);
             ++samples_, ++samplesPerLevel_[l];
@@ -228,15 +249,20 @@ void SliceWorker::compositeVolumes(Pyramid& pyramid, int idx, int slice) {
     const std::size_t pixels = pyramid.level(0).rays.dir.size();
     const float* s0 = pyramid.level(0).s.data() + idx;
     float* sPrev = pyramid.sPrev.data() + idx;
+    const Vec3f* e0 = emits_ ? pyramid.level(0).e.data() + idx : nullptr;
+    Vec3f* ePrev = emits_ ? pyramid.ePrev.data() + idx : nullptr;
     bool empty = true;
     for (int k = 0; k < n; ++k) {
         const float bg = data_.background(k);
         segments_[k] = {0, 0, 0, 0};
-        if (s0[k * pixels] == bg && sPrev[k * pixels] == bg) continue;
+        const bool glows = emits_ && (e0[k * pixels] != Vec3f(0.0f) || ePrev[k * pixels] != Vec3f(0.0f));
+        if (s0[k * pixels] == bg && sPrev[k * pixels] == bg && !glows) continue;
         empty = false;
         if (slice > 0) {
             const int length = slice - pyramid.iPrev[idx];
-            segments_[k] = sc_.tables.of(sc_.volumes[k]).forSlices(length).lookup(0, sPrev[k * pixels], s0[k * pixels]);
+            const PreintegrationTable& table = sc_.tables.of(sc_.volumes[k]).forSlices(length);
+            segments_[k] = table.lookup(0, sPrev[k * pixels], s0[k * pixels]);
+            if (glows) addEmission(segments_[k], table.lookupEmission(0, sPrev[k * pixels], s0[k * pixels]), ePrev[k * pixels], e0[k * pixels]);
         }
     }
     if (slice > 0 && !empty) {
@@ -244,6 +270,8 @@ void SliceWorker::compositeVolumes(Pyramid& pyramid, int idx, int slice) {
         ++composites_;
     }
     for (int k = 0; k < n; ++k) sPrev[k * pixels] = s0[k * pixels];
+    if (emits_)
+        for (int k = 0; k < n; ++k) ePrev[k * pixels] = e0[k * pixels];
 }
 
 // Figure 8: the segment from the previous composite to this slice. A
@@ -316,8 +344,11 @@ void SliceWorker::compositeToSurface(Pyramid& pyramid, int idx, int slice) {
     const Vec3d p = sc_.slices.eye + pyramid.level(0).rays.dir[idx] * tHit;
     const std::size_t pixels = pyramid.level(0).rays.dir.size();
     const int n = int(sc_.volumes.size());
+    const PyramidLevel& level0 = pyramid.level(0);
     for (int k = 0; k < n; ++k)
-        segments_[k] = exactSegment(sc_.volumes[k], pyramid.level(0).s[k * pixels + idx], data_.sample(k, p), length);
+        segments_[k] = emits_ ? exactEmittingSegment(sc_.volumes[k], level0.s[k * pixels + idx], data_.sample(k, p), level0.e[k * pixels + idx],
+                                                     data_.emission(k, p), length)
+                              : exactSegment(sc_.volumes[k], level0.s[k * pixels + idx], data_.sample(k, p), length);
     samples_ += n, samplesPerLevel_[0] += n;
     pyramid.color[idx].add(combineMedia(segments_.data(), n));
     ++composites_;

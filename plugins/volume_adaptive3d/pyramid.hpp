@@ -1,9 +1,9 @@
 #pragma once
 // The image pyramid of volume.adaptive3d: per level, the rays and the
-// stored data values s (one per volume) and oracle distance d (in slices)
-// of every pixel;
-// on level 0 also the previous composite's slice and value and the
-// accumulated colour. SliceWorker is the body of Figure 4 for one row.
+// stored data values s (one per volume), emission e (one per volume, only
+// when a volume emits) and oracle distance d (in slices) of every pixel;
+// on level 0 also the previous composite's slice, value and emission and
+// the accumulated colour. SliceWorker is the body of Figure 4 for one row.
 #include <algorithm>
 #include <bit>
 #include <climits>
@@ -39,6 +39,7 @@ inline std::uint8_t dueLevel(float d) { return std::uint8_t(std::bit_width(unsig
 struct PyramidLevel {
     LevelRays rays;
     std::vector<float> s;  // normalised data value, [volume * pixels + pixel]
+    std::vector<Vec3f> e;  // emission, laid out as s; empty when no volume emits
     std::vector<float> d;  // sampling distance, slices
     int tilesX = 0, tilesY = 0;
     std::vector<std::uint8_t> tileDueLevel;  // min dueLevel(d) over the tile
@@ -71,6 +72,7 @@ public:
     const PyramidLevel& level(int l) const { return levels_[l]; }
     // Level-0 compositing state.
     std::vector<float> sPrev;  // [volume * pixels + pixel]
+    std::vector<Vec3f> ePrev;  // the same for emission; empty when no volume emits
     std::vector<int> iPrev;
     std::vector<SegmentCompositor> color;
     SurfaceSlices surfaces;
@@ -127,6 +129,7 @@ private:
     float sampleVolumes(PyramidLevel& level, int l, int idx, int slice, const Vec3d& p);
     void compositeOneVolume(Pyramid& pyramid, int idx, int slice);
     void compositeVolumes(Pyramid& pyramid, int idx, int slice);
+    void synthesizeEmission(Pyramid& pyramid, int l, int idx, const int* parents, float fx, float fy);
 
     SliceContext& sc_;
     // Volume k's oracle distance at reference position p, in reference voxels.
@@ -135,8 +138,10 @@ private:
     SliceSamplers data_;
     std::deque<openvdb::FloatGrid::ConstAccessor> oracleAccessors_;
     std::vector<PreintSample> segments_;  // one per volume
-    // One volume in its own index space (no placement between the reference and it).
+    // One volume in its own index space (no placement between the reference
+    // and it) that emits nothing; emitting scenes take the general path.
     bool one_ = false;
+    bool emits_ = false;  // some volume emits
     const ScalarSampler* sampler0_ = nullptr;
     openvdb::FloatGrid::ConstAccessor* oracle0_ = nullptr;
     float background0_ = 0;

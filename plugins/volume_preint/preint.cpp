@@ -26,14 +26,22 @@
 // colour = volume + (1 - alpha) x surface, alpha 1; the volume does not
 // shadow surfaces.
 //
+// Emission (a volume's emission grid: black-body temperature, emission
+// times a colour) is read at every slice beside the data and varies
+// linearly over a segment, like the data; the segment's emitted radiance,
+// absorbed along it by the transfer function's extinction, comes from
+// emission weights the table holds beside the colour (core/volume/
+// preintegration.hpp), built only when a volume emits. The cut segment in
+// front of a surface integrates them exactly.
+//
 // Several volumes (core/volume/slice_volumes.hpp): slices are measured in
 // the first volume's index space; every volume is sampled at each slice and
 // overlapping segments combine as media whose extinctions add (combineMedia).
 //
 // Counters: rays.camera, image.samples, slices, volume.samples (one trilinear lookup per
-// slice inside the volume: the back sample of one segment is the front
+// slice inside the volume, of the data and, where it emits, its emission: the back sample of one segment is the front
 // sample of the next), composite.ops; with meshes also rays.surface and
-// rays.shadow.
+// rays.shadow; with emission also preintegration.emission_tables.
 #include <climits>
 #include <limits>
 
@@ -86,7 +94,6 @@ public:
     Preint(const Scene& scene, const ParamSet& p)
         : params_(readSliceParams(p)), offsetPattern_(p.getString("offset_pattern")), plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         requireSliceableVolume(scene, "volume.preint");
-        requireNoEmission(scene, "volume.preint");
         requireSurfaceLights(scene, "volume.preint");
         if (scene.volumes.size() > std::size_t(kMaxVolumes))
             throw Error("volume.preint renders at most " + std::to_string(kMaxVolumes) + " volumes; the scene has " +
@@ -104,10 +111,11 @@ public:
         if (!offsetPattern_.empty()) offsets = makePatternSet(offsetPattern_, s.spp, hashCombine(s.seed, 0x0ff5));
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // built before the pixel loop
         if (accel) scene.emitters();
-        const Frame frame{scene, volumes, slices, oneSlice, offsets, accel, accel ? rayEpsilon(scene) : 0.0f, s};
+        const Frame frame{scene, volumes, slices, oneSlice, offsets, accel, accel ? rayEpsilon(scene) : 0.0f, sceneEmits(volumes), s};
         const ImagePlane plane(plane_, s);
         Image image = plane.render(ctx, "volume.preint", [&] { return Shader(frame); });
         ctx.counters.add(kSlices, slices.imax + 1);
+        if (const int n = tables.emissionBuiltCount()) ctx.counters.add(kEmissionTables, n);
         return image;
     }
 
@@ -121,6 +129,7 @@ private:
         const std::optional<PatternSet>& offsets;
         const MeshAccel* accel;
         float eps;
+        bool emits;  // some volume emits: its samples also read emission
         const RenderSettings& s;
     };
 
@@ -166,29 +175,38 @@ private:
             const Vec3d dir = sliceRayOf(worldRay, reference, slices).dir;
             auto position = [&](int k) { return slices.t(k) + shift * slices.spacing; };
             float prev[kMaxVolumes], cur[kMaxVolumes];
+            Vec3f ePrev[kMaxVolumes], eCur[kMaxVolumes];  // emission, read only when the scene emits
             PreintSample seg[kMaxVolumes];
-            auto scalars = [&](int k, float* s) {
+            auto scalars = [&](int k, float* s, Vec3f* e) {
                 const Vec3d p = slices.eye + dir * position(k);
                 for (int v = 0; v < n; ++v) {
                     const bool inside = k >= first[v] && k <= last[v];
                     samples += inside;
                     s[v] = inside ? samplers.sample(v, p) : samplers.background(v);
+                    if (f.emits) e[v] = inside ? samplers.emission(v, p) : Vec3f(0.0f);
                 }
             };
-            scalars(from, prev);
+            scalars(from, prev, ePrev);
             for (int k = from + 1; k <= to; ++k) {
                 if (position(k) > tHit) {  // the surface cuts this segment: its true length, exactly
                     const double length = tHit - position(k - 1);
                     if (length <= 0) break;
                     const Vec3d p = slices.eye + dir * tHit;
-                    for (int v = 0; v < n; ++v) seg[v] = exactSegment(f.volumes[v], prev[v], samplers.sample(v, p), length);
+                    for (int v = 0; v < n; ++v)
+                        seg[v] = f.emits ? exactEmittingSegment(f.volumes[v], prev[v], samplers.sample(v, p), ePrev[v], samplers.emission(v, p), length)
+                                         : exactSegment(f.volumes[v], prev[v], samplers.sample(v, p), length);
                     samples += n;
                     acc.add(combineMedia(seg, n));
                     ++composites;
                     break;
                 }
-                scalars(k, cur);
-                for (int v = 0; v < n; ++v) seg[v] = f.tables[v]->lookup(0, prev[v], cur[v]), prev[v] = cur[v];
+                scalars(k, cur, eCur);
+                for (int v = 0; v < n; ++v) {
+                    seg[v] = f.tables[v]->lookup(0, prev[v], cur[v]);
+                    if (f.emits && (ePrev[v] != Vec3f(0.0f) || eCur[v] != Vec3f(0.0f)))
+                        addEmission(seg[v], f.tables[v]->lookupEmission(0, prev[v], cur[v]), ePrev[v], eCur[v]);
+                    prev[v] = cur[v], ePrev[v] = eCur[v];
+                }
                 acc.add(combineMedia(seg, n));
                 ++composites;
             }

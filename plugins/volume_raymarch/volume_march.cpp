@@ -75,10 +75,7 @@ VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototyp
         emissionAccessor.emplace(v.emission->getConstAccessor());
         emission.emplace(*emissionAccessor, v.emission->transform());
     }
-    if (v.motion) {
-        motionAccessor.emplace(v.motion->getConstAccessor());
-        motion.emplace(*motionAccessor, v.motion->transform());
-    }
+    emplaceMotion(motion, v);
     if (prototype) hdda.emplace(*prototype);
 }
 
@@ -143,7 +140,7 @@ void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
         const double t = u * c.perU;
         if (t < c.ray.t0 || t >= c.ray.t1) continue;
         Vec3d p = c.ray.at(t);
-        if (c.lookup->motion && time_ != 0) p -= Vec3d(c.lookup->motion->isSample(p)) * time_;
+        if (c.lookup->motion && time_ != 0) p = c.lookup->motion->advected(p, time_);
         const float value = c.lookup->sampler.isSample(p);
         ++samples_;
         if (c.lookup->emission) glow += c.lookup->emission->isSample(p) * c.depthScale;

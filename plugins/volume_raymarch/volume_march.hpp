@@ -20,8 +20,8 @@
 //
 // A moving volume (Volume::motion, an open shutter) is looked up at
 // p - motion(p) t for the ray's shutter time t (frames from the frame):
-// first-order backward advection of all its grids; such rays take the
-// general per-sample path.
+// first-order backward advection of all its grids (core/volume/
+// volume_motion.hpp); such rays take the general per-sample path.
 //
 // A surface at world ray parameter tSurface ends the march exactly: the
 // segments before it are whole, the last one is cut at the surface and
@@ -36,6 +36,7 @@
 
 #include "core/volume/leaf_sampler.hpp"
 #include "core/volume/volume_bvh.hpp"
+#include "core/volume/volume_motion.hpp"
 #include "core/scene/scene.hpp"
 #include "core/volume/volume_ray.hpp"
 
@@ -91,8 +92,7 @@ private:
         VolumeSampler sampler;
         std::optional<openvdb::Vec3SGrid::ConstAccessor> emissionAccessor;
         std::optional<Vec3LeafSampler> emission;  // through emissionAccessor
-        std::optional<openvdb::Vec3SGrid::ConstAccessor> motionAccessor;
-        std::optional<Vec3LeafSampler> motion;  // through motionAccessor
+        std::optional<MotionLookup> motion;
         std::optional<VolumeIntersector> hdda;
         double voxelLength;
         bool uniform;  // uniform voxels: index units are voxel lengths exactly

@@ -11,6 +11,7 @@
 #include "core/volume/leaf_sampler.hpp"
 #include "core/volume/medium.hpp"
 #include "core/volume/transmittance.hpp"
+#include "core/volume/volume_motion.hpp"
 #include "core/volume/volume_ray.hpp"
 
 namespace weft {
@@ -32,15 +33,38 @@ struct GridLookup {  // built in place: the sampler points at the accessor
     explicit GridLookup(const openvdb::FloatGrid& g) : acc(g.getConstAccessor()), sampler(acc, g.transform()) {}
 };
 
+// A Vec3s grid's lookups, when the volume has the grid.
+struct Vec3Lookup {
+    std::optional<openvdb::Vec3SGrid::ConstAccessor> accessor;
+    std::optional<Vec3LeafSampler> sampler;  // through accessor
+    explicit Vec3Lookup(const openvdb::Vec3SGrid::ConstPtr& grid) {
+        if (!grid) return;
+        accessor.emplace(grid->getConstAccessor());
+        sampler.emplace(*accessor, grid->transform());
+    }
+    explicit operator bool() const { return sampler.has_value(); }
+    Vec3d at(const Vec3d& ijk) { return toVec3d(sampler->isSample(ijk)); }
+};
+
 struct VolumeLookup : GridLookup {
     VdbIntersector primary, shadow;
-    std::optional<openvdb::Vec3SGrid::ConstAccessor> emissionAccessor;
-    std::optional<Vec3LeafSampler> emission;  // through emissionAccessor
-    explicit VolumeLookup(const ScatterVolume& v) : GridLookup(*v.volume->grid), primary(*v.intersector), shadow(*v.intersector) {
-        if (!v.volume->emission) return;
-        emissionAccessor.emplace(v.volume->emission->getConstAccessor());
-        emission.emplace(*emissionAccessor, v.volume->emission->transform());
+    Vec3Lookup emission, color;
+    std::optional<MotionLookup> motion;
+    const openvdb::math::Transform* xf;
+    explicit VolumeLookup(const ScatterVolume& v)
+        : GridLookup(*v.volume->grid), primary(*v.intersector), shadow(*v.intersector), emission(v.volume->emission),
+          color(v.volume->color), xf(&v.volume->grid->transform()) {
+        emplaceMotion(motion, *v.volume);
     }
+    // Where the volume's grids are read for world point p at shutter time
+    // `time` (frames): p's index point, advected back when the volume moves.
+    Vec3d indexAt(const Vec3d& p, double time) {
+        const Vec3d ijk = xf->worldToIndex(p);
+        return motion && time != 0 ? Vec3d(motion->advected(ijk, time)) : ijk;
+    }
+    bool movesAt(double time) const { return motion && time != 0; }
+    // The scattering tint at an index point (1: untinted).
+    Vec3d tint(const Vec3d& ijk) { return color ? color.at(ijk) : Vec3d(1.0); }
 };
 
 // Emission e (per march unit) over a step of length h whose transmittance
@@ -80,7 +104,7 @@ LightAt lightAt(const DirectionalOrPointLight& light, const Vec3d& p) {
 BBoxd intersectorWorldBox(const Volume& v) {
     openvdb::CoordBBox leaves;
     v.grid->tree().evalLeafBoundingBox(leaves);
-    leaves.expand(1);
+    leaves.expand(1 + (v.motion ? int(std::ceil(v.motionReach)) : 0));  // and where a moving volume reaches
     return worldBoxOf(v.grid->transform(), leaves.min().asVec3d(), leaves.max().asVec3d() + Vec3d(1.0));
 }
 
@@ -96,12 +120,13 @@ public:
     std::vector<VdbRay::TimeSpan> hits;
     std::vector<Share> shares;
     std::vector<std::uint32_t> crossed;  // volumes whose boxes the current ray meets
+    double time = 0;                     // the camera sample's shutter time, frames from the frame
     Counts counts;
 };
 
 ScatterTracer::ScatterTracer(const Scene& scene, const ScatterParams& params, std::vector<ScatterVolume> volumes,
                              const MeshAccel* accel, float eps)
-    : scene_(scene), params_(params), volumes_(std::move(volumes)), accel_(accel), eps_(eps) {
+    : scene_(scene), params_(params), volumes_(std::move(volumes)), accel_(accel), eps_(eps), moving_(scene.volumesMove()) {
     if (volumes_.size() < 2) return;
     std::vector<BBoxd> boxes;
     for (const ScatterVolume& v : volumes_) boxes.push_back(intersectorWorldBox(*v.volume));
@@ -153,8 +178,9 @@ std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> ScatterTracer::ro
 
 const ScatterTracer::Counts& ScatterTracer::counts(const Row& row) { return row.counts; }
 
-Vec3d ScatterTracer::radiance(const Ray& ray, float offset, Row& row, Rng& rng, Vec3d& T, bool& surface) const {
+Vec3d ScatterTracer::radiance(const Ray& ray, float offset, double time, Row& row, Rng& rng, Vec3d& T, bool& surface) const {
     Vec3d L(0.0);
+    row.time = time;
     SurfaceHit hit;
     if (accel_) hit = firstSurface(*accel_, ray);
     surface = hit.valid();
@@ -201,11 +227,12 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
             Vec3d sigma(0.0), glow(0.0);
             for (const Crossing& c : row.crossings) {
                 VolumeLookup& look = row.volumes[c.volume];
-                const double rho = finiteDensity(look.sampler.wsSample(pw));
+                const Vec3d ijk = look.indexAt(pw, row.time);
+                const double rho = finiteDensity(look.sampler.isSample(ijk));
                 ++row.counts.samples;
-                if (look.emission) glow += toVec3d(look.emission->wsSample(pw)) * c.depthScale;
+                if (look.emission) glow += look.emission.at(ijk) * c.depthScale;
                 if (!(rho > 0) || rho < params_.cutoff) continue;  // no share: it would pick a receiver with no cache here
-                row.shares.push_back({c.volume, rho * c.depthScale});
+                row.shares.push_back({c.volume, rho * c.depthScale, look.tint(ijk)});
                 sigma += volumes_[c.volume].sigmaT * row.shares.back().weight;
             }
             if (row.shares.empty() && glow == Vec3d(0.0)) continue;
@@ -224,22 +251,25 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
 bool ScatterTracer::marchOne(const Ray& ray, double uSurface, float offset, Row& row, Rng& rng, Vec3d& T, Vec3d& L) const {
     const Crossing& c = row.crossings.front();
     const ScatterVolume& v = volumes_[c.volume];
-    Sampler& sampler = row.volumes[c.volume].sampler;
-    Vec3LeafSampler* emission = row.volumes[c.volume].emission ? &*row.volumes[c.volume].emission : nullptr;
-    row.shares.assign(1, Share{c.volume, 0.0});
+    VolumeLookup& look = row.volumes[c.volume];
+    Sampler& sampler = look.sampler;
+    Vec3Lookup* emission = look.emission ? &look.emission : nullptr;
+    const double time = row.time;
+    row.shares.assign(1, Share{c.volume, 0.0, Vec3d(1.0)});
     const double h = params_.step, cutoff = params_.cutoff;
     std::int64_t n = 0;
     bool more = true;
     for (const RayInterval& span : row.spans) {
         for (double t = h * (std::ceil(span.lo / h - offset) + offset); t <= span.hi && more; t += h) {
             if (t >= uSurface) break;
-            const Vec3d pw = v.worldPos(c.ray, t * c.perU);
-            const double rho = finiteDensity(sampler.wsSample(pw));
+            const Vec3d pw = v.worldPos(c.ray, t * c.perU), ijk = look.indexAt(pw, time);
+            const double rho = finiteDensity(sampler.isSample(ijk));
             ++n;
-            const Vec3d glow = emission ? toVec3d(emission->wsSample(pw)) * c.depthScale : Vec3d(0.0);
+            const Vec3d glow = emission ? emission->at(ijk) * c.depthScale : Vec3d(0.0);
             const bool scatters = rho > 0 && rho >= cutoff;
             if (!scatters && glow == Vec3d(0.0)) continue;
             row.shares[0].weight = scatters ? rho * c.depthScale : 0.0;
+            if (look.color) row.shares[0].tint = look.tint(ijk);
             const Vec3d sigma = v.sigmaT * row.shares[0].weight, dT = expNeg(sigma * h);
             if (scatters) L += inscatter(pw, ray.dir, row.shares, v.sigmaT, row, rng) * T * (Vec3d(1.0) - dT);
             if (emission) L += T * emittedOver(glow, sigma, dT, h);
@@ -281,11 +311,11 @@ Vec3d ScatterTracer::inscatter(const Vec3d& p, const Vec3d& viewDir, const std::
 Vec3d ScatterTracer::scattering(const std::vector<Share>& shares, const Vec3d& sigmaT, double cosTheta) const {
     if (shares.size() == 1) {
         const ScatterVolume& v = volumes_[shares.front().volume];
-        return v.albedo * phase(v, cosTheta);
+        return v.albedo * shares.front().tint * phase(v, cosTheta);
     }
     Vec3d mix(0.0);
     for (const Share& s : shares)
-        mix += volumes_[s.volume].sigmaT * volumes_[s.volume].albedo * (s.weight * phase(volumes_[s.volume], cosTheta));
+        mix += volumes_[s.volume].sigmaT * volumes_[s.volume].albedo * s.tint * (s.weight * phase(volumes_[s.volume], cosTheta));
     for (int c = 0; c < 3; ++c) mix[c] = sigmaT[c] > 0 ? mix[c] / sigmaT[c] : 0.0;
     return mix;
 }
@@ -305,13 +335,20 @@ ScatterTracer::EmitterLight ScatterTracer::emitterLight(const Vec3d& p, Row& row
 Vec3d ScatterTracer::shadow(std::size_t light, const Vec3d& p, const Vec3d& toLight, double distance, std::size_t receiver,
                             Row& row, Rng& rng) const {
     if (params_.estimator != ShadowEstimator::Cached) return tracedShadow(p, toLight, distance, row, rng);
+    // A moving receiver's cache is read where its sample came from: exact
+    // for a volume translating as a whole under directional lights.
+    VolumeLookup& look = row.volumes[receiver];
+    const bool moving = look.movesAt(row.time);
+    const Vec3d q = moving ? look.xf->indexToWorld(look.indexAt(p, row.time)) : p;
     Vec3d T(1.0);
     for (std::size_t o = 0; o < volumes_.size(); ++o) {
         ++row.counts.shadowSamples;
-        T *= expNeg(volumes_[o].sigmaT * row.density[cacheIndex(light, receiver, o)].sampler.wsSample(p));
+        T *= expNeg(volumes_[o].sigmaT * row.density[cacheIndex(light, receiver, o)].sampler.wsSample(q));
     }
-    if (accel_) T *= std::clamp(double(row.visibility[light * volumes_.size() + receiver].sampler.wsSample(p)), 0.0, 1.0);
-    return T;
+    if (!accel_) return T;
+    if (!moving) return T * std::clamp(double(row.visibility[light * volumes_.size() + receiver].sampler.wsSample(p)), 0.0, 1.0);
+    ++row.counts.meshShadowRays;  // the meshes stay where the visibility cache saw them; the sample does not
+    return accel_->occluded(toVec3f(p), toVec3f(toLight), 0.0f, float(distance * (1 - 1e-4))) ? Vec3d(0.0) : T;
 }
 
 // Shadow rays: the meshes (Embree), then every volume (ratio tracking or the fixed-step march).
@@ -337,7 +374,7 @@ Vec3d ScatterTracer::shadowThrough(std::size_t volume, const Vec3d& p, const Vec
     look.shadow.hits(row.hits);
     const double k = v.voxelLengthsPerIndexUnit(iray.dir());  // 1 on uniform grids
     auto sigma = [&](double t) {
-        const double rho = finiteDensity(look.sampler.wsSample(v.worldPos(iray, t)));
+        const double rho = finiteDensity(look.sampler.isSample(look.indexAt(v.worldPos(iray, t), row.time)));
         ++row.counts.shadowSamples;
         return !(rho > 0) || rho < params_.cutoff ? Vec3d(0.0) : v.sigmaT * (rho * k / (1.0 + (t * k) * params_.gain));
     };
@@ -384,7 +421,7 @@ Vec3d ScatterTracer::surfaceRadiance(const Ray& ray, const SurfaceHit& hit, Row&
 // itself (surfaces lie outside the volumes' cache voxels).
 Vec3d ScatterTracer::surfaceShadow(std::size_t light, const Vec3d& p, const Vec3d& toLight, double distance, Row& row,
                                    Rng& rng) const {
-    if (params_.estimator != ShadowEstimator::Cached) return tracedShadow(p, toLight, distance, row, rng);
+    if (params_.estimator != ShadowEstimator::Cached || moving_) return tracedShadow(p, toLight, distance, row, rng);
     ++row.counts.meshShadowRays;
     if (accel_->occluded(toVec3f(p), toVec3f(toLight), 0.0f, float(distance * (1 - 1e-4)))) return Vec3d(0.0);
     Vec3d T(1.0);

@@ -11,6 +11,19 @@
 // voxel length is one index unit, so one uniform volume marches exactly as
 // before. A sample where several volumes have density scatters in
 // proportion to each one's scattering coefficient (with its own phase).
+//
+// A volume's colour grid tints its albedo at each sample (scattering x
+// colour, the extinction unchanged: core/volume/volume_grids.hpp).
+//
+// Moving volumes (velocity motion blur): every lookup of a camera sample,
+// along its primary ray and its shadow rays, reads the volume where it is
+// at the sample's shutter time (core/volume/volume_motion.hpp; the
+// intersectors' occupancy is dilated by the reach). The light cache holds
+// the volumes as they stand: a moving receiver reads it where the sample
+// came from, which is exact for a volume translating as a whole under
+// directional lights and first order otherwise; surfaces then trace their
+// shadow rays, and estimator=ratio or raymarch traces every shadow ray
+// through the moving volumes.
 #include <openvdb/tools/Interpolation.h>
 
 #include <deque>
@@ -47,12 +60,14 @@ public:
 
     // Radiance of a camera ray; T returns the volumes' transmittance in
     // front of it and surface whether it ended at a surface.
-    Vec3d radiance(const Ray& ray, float offset, Row& row, Rng& rng, Vec3d& T, bool& surface) const;
+    // time: the camera sample's shutter time, frames from the frame (moving volumes).
+    Vec3d radiance(const Ray& ray, float offset, double time, Row& row, Rng& rng, Vec3d& T, bool& surface) const;
 
 private:
     struct Share {  // one volume's part of a sample
         std::size_t volume;
         double weight;  // density x its voxel lengths per march unit
+        Vec3d tint;     // its colour grid there (1: untinted)
     };
     struct EmitterLight {  // one emitter sample: direction, radiance x transmittance / pdf
         Vec3d toLight{0.0}, radiance{0.0};
@@ -82,6 +97,7 @@ private:
     std::vector<ScatterVolume> volumes_;
     const MeshAccel* accel_;
     float eps_;
+    bool moving_;  // some volume moves while the shutter is open
     std::vector<openvdb::FloatGrid::Ptr> densityCaches_;     // [light][receiver][occluder]
     std::vector<openvdb::FloatGrid::Ptr> visibilityCaches_;
     VolumeBvh bvh_;  // with two or more volumes  // [light][receiver], with meshes only

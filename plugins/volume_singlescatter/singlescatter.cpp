@@ -29,6 +29,9 @@
 // (the cache keeps a visibility grid). step and shadowstep count voxel
 // lengths (cube root of a voxel's volume): index units on uniform grids.
 //
+// Motion blur: each camera sample's shutter time moves the camera along its
+// keys and the volumes along their velocity (scatter_tracer.hpp).
+//
 // Counters: rays.camera, image.samples, volume.samples (density lookups along primary
 // rays), shadow.samples (density lookups for shadows, the cache included),
 // mesh.shadow_rays (with meshes only).
@@ -65,9 +68,8 @@ public:
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();
         ScatterTracer tracer(scene, params_, std::move(volumes), accel, accel ? rayEpsilon(scene) : 0.0f);
         if (params_.estimator == ShadowEstimator::Cached) tracer.buildCaches(ctx);
-        const Camera camera = params_.camera.value_or(scene.camera);
         const ImagePlane plane(plane_, s);
-        return plane.render(ctx, "volume.singlescatter", [&] { return Shader{*this, tracer, camera, s, accel != nullptr, tracer.row()}; });
+        return plane.render(ctx, "volume.singlescatter", [&] { return Shader{*this, scene, tracer, s, accel != nullptr, tracer.row()}; });
     }
 
 private:
@@ -76,8 +78,8 @@ private:
     // (pixel, sample index). Summed in double, as before the image plane.
     struct Shader {
         const SingleScatter& self;
+        const Scene& scene;
         const ScatterTracer& tracer;
-        const Camera& camera;
         const RenderSettings& s;
         bool meshes;
         std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> row;
@@ -89,7 +91,10 @@ private:
             Vec3d T(1.0);
             bool surface = false;
             ++rays;
-            const Vec3d L = tracer.radiance(camera.generate(c.x, c.y, s.width, s.height), offset, *row, rng, T, surface);
+            // compat=vdb_render's camera stands still; the scene's moves along its keys.
+            const Camera camera = self.params_.camera.value_or(scene.cameraAt(c.time));
+            const double time = scene.shutter.frameTime(0, c.time);
+            const Vec3d L = tracer.radiance(camera.generate(c.x, c.y, s.width, s.height), offset, time, *row, rng, T, surface);
             return {L[0], L[1], L[2], surface ? 1.0 : 1.0 - (T[0] + T[1] + T[2]) / 3.0};
         }
         void flush(Counters& counters) const {
@@ -111,12 +116,13 @@ const TechniqueRegistrar registrar{{
     "single scattering from point, directional and emissive lights, vdb_render's model and names or physical=true, faster estimators",
     ParamTable("volume.singlescatter", withImagePlaneParams(scatterParamSpecs(), PlainSamples::Jittered)),
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<SingleScatter>(scene, p); },
-    /*motionBlur=*/false,
+    /*motionBlur=*/true,
     /*renders=*/Content::VolumesAndMeshes,
     /*bytesPerPixel=*/32,
     /*reference=*/{"volume.singlescatter", {"step=0.1", "shadowstep=0.25", "estimator=raymarch"}, 64},
     /*knobs=*/{{"step", {"2", "1", "0.5"}}, {"shadowstep", {"6", "3", "1"}}, {"spp", {"1", "4", "16"}},
                  {"estimator", {"cached", "raymarch"}}},
+    /*scatters=*/true,
 }};
 
 }  // namespace

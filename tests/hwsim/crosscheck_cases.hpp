@@ -41,9 +41,11 @@ struct Case {
     bool slopedEdges = false;  // random triangles (softpipe's scanline snapping differs there)
 };
 
-// What both sides report for a case.
+// What both sides report for a case. The pipeline statistics are -1 where
+// the GL implementation does not offer ARB_pipeline_statistics_query.
 struct Counts {
     long long samplesPassed = 0, invocations = 0, written = 0;
+    long long fsInvocations = -1, clipIn = -1, clipOut = -1;  // FRAGMENT_SHADER_INVOCATIONS, CLIPPING_INPUT/OUTPUT_PRIMITIVES
     std::uint64_t writtenHash = 1469598103934665603ull;  // FNV-1a over written pixel indices
     void markWritten(int x, int y) {
         ++written;

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <string>
 
+#include "tests/hwsim/case_lines.hpp"
 #include "tests/hwsim/crosscheck_cases.hpp"
 #include "tests/hwsim/gl_context.hpp"
 
@@ -50,6 +51,33 @@ GLenum glOp(StencilOp op) {
 void enable(GLenum cap, bool on) { on ? glEnable(cap) : glDisable(cap); }
 
 bool boundsSupported = false;
+bool statisticsSupported = false;
+
+// Queries running around a case's passes: SAMPLES_PASSED and, where offered,
+// the pipeline statistics (each target may have one query active at a time).
+class CaseQueries {
+public:
+    CaseQueries() {
+        glGenQueries(4, ids_);
+        for (int i = 0; i < targets(); ++i) glBeginQuery(kTargets[i], ids_[i]);
+    }
+    ~CaseQueries() { glDeleteQueries(4, ids_); }
+    void end(Counts& counts) {
+        for (int i = 0; i < targets(); ++i) glEndQuery(kTargets[i]);
+        long long* into[4] = {&counts.samplesPassed, &counts.fsInvocations, &counts.clipIn, &counts.clipOut};
+        for (int i = 0; i < targets(); ++i) {
+            GLuint64 v = 0;
+            glGetQueryObjectui64v(ids_[i], GL_QUERY_RESULT, &v);
+            *into[i] = (long long)v;
+        }
+    }
+
+private:
+    static constexpr GLenum kTargets[4] = {GL_SAMPLES_PASSED, GL_FRAGMENT_SHADER_INVOCATIONS_ARB, GL_CLIPPING_INPUT_PRIMITIVES_ARB,
+                                           GL_CLIPPING_OUTPUT_PRIMITIVES_ARB};
+    static int targets() { return statisticsSupported ? 4 : 1; }
+    GLuint ids_[4] = {};
+};
 
 void applyState(const PipelineState& s) {
     enable(GL_POLYGON_STIPPLE, s.stipple.enabled);
@@ -82,9 +110,8 @@ void runCase(const Case& c) {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     const GLuint zero = 0;
     glBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof zero, &zero);
-    GLuint query;
-    glGenQueries(1, &query);
-    glBeginQuery(GL_SAMPLES_PASSED, query);
+    Counts counts;
+    CaseQueries queries;
     for (const Pass& p : c.passes) {
         static GLuint programs[3][2] = {};
         GLuint& prog = programs[int(p.program)][p.earlyFragmentTests];
@@ -94,21 +121,16 @@ void runCase(const Case& c) {
         glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(p.triangles.size() * sizeof(Vertex)), p.triangles.data(), GL_STREAM_DRAW);
         glDrawArrays(GL_TRIANGLES, 0, GLsizei(p.triangles.size()));
     }
-    glEndQuery(GL_SAMPLES_PASSED);
-    GLuint64 samples = 0;
-    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &samples);
-    glDeleteQueries(1, &query);
+    queries.end(counts);
     GLuint runs = 0;
     glGetBufferSubData(GL_ATOMIC_COUNTER_BUFFER, 0, sizeof runs, &runs);
     static GLubyte pixels[kSize * kSize * 4];
     glReadPixels(0, 0, kSize, kSize, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-    Counts counts;
-    counts.samplesPassed = (long long)samples, counts.invocations = runs;
+    counts.invocations = runs;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
             if (pixels[(y * kSize + x) * 4]) counts.markWritten(x, y);
-    std::printf("CASE %s samples=%lld invocations=%lld written=%lld hash=%llu\n", c.name.c_str(), counts.samplesPassed,
-                counts.invocations, counts.written, (unsigned long long)counts.writtenHash);
+    std::printf("%s\n", caseLine(c.name, counts).c_str());
 }
 
 void setUpTarget() {
@@ -146,6 +168,8 @@ int main() {
     for (const char* ext : {"GL_ARB_shader_atomic_counters", "GL_ARB_shader_image_load_store"})
         if (!hasExtension(ext)) fail(std::string("the GL implementation lacks ") + ext);
     boundsSupported = hasExtension("GL_EXT_depth_bounds_test");
+    statisticsSupported = hasExtension("GL_ARB_pipeline_statistics_query");
+    if (!statisticsSupported) std::printf("NOSTATS no GL_ARB_pipeline_statistics_query\n");
     setUpTarget();
     for (const Case& c : allCases()) {
         if (c.needsBounds && !boundsSupported) {

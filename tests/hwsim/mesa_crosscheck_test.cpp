@@ -2,18 +2,19 @@
 // 120 seeded random ones) rendered by llvmpipe and softpipe (weft_mesa_check,
 // one process per driver) and by hwsim under the matching profile must give
 // equal counts — SAMPLES_PASSED, non-helper program invocations (an atomic
-// counter in the program), and which pixels were written. If EGL cannot make a context the test fails
-// with the reason.
+// counter in the program), which pixels were written, and the pipeline
+// statistics FRAGMENT_SHADER_INVOCATIONS and CLIPPING_INPUT/OUTPUT_PRIMITIVES
+// (both drivers offer ARB_pipeline_statistics_query). If EGL cannot make a
+// context the test fails with the reason.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <sstream>
 
 #include "core/base/error.hpp"
-#include "hwsim/pipeline.hpp"
-#include "tests/hwsim/crosscheck_cases.hpp"
+#include "tests/hwsim/case_lines.hpp"
+#include "tests/hwsim/crosscheck_hwsim.hpp"
 
 namespace weft::crosscheck {
 namespace {
@@ -38,60 +39,12 @@ DriverRun runDriver(const std::string& driver) {
     return run;
 }
 
-// "CASE name samples=.. invocations=.. written=.. hash=.." lines by name.
-std::map<std::string, Counts> parse(const std::string& output) {
-    std::map<std::string, Counts> out;
-    std::istringstream in(output);
-    std::string line;
-    while (std::getline(in, line)) {
-        char name[64];
-        Counts c;
-        unsigned long long hash = 0;
-        if (std::sscanf(line.c_str(), "CASE %63s samples=%lld invocations=%lld written=%lld hash=%llu", name, &c.samplesPassed,
-                        &c.invocations, &c.written, &hash) == 5) {
-            c.writtenHash = hash;
-            out[name] = c;
-        }
-    }
-    return out;
-}
-
-struct CaseProgram {
-    ProgramKind kind;
-    void operator()(const Fragment& f, FragmentOutput& o) const {
-        o.color = {1, 1, 1, 1};
-        if (kind == ProgramKind::DiscardOdd) o.discard = (f.x & 1) != 0;
-        if (kind == ProgramKind::WriteDepth) o.depth = f.x + 0.5f < 32.0f ? 0.25f : 0.75f;
-    }
-};
-
-Counts runOnHwsim(const Case& c, const Profile& profile) {
-    Framebuffer fb(kSize, kSize, c.clearDepth);
-    fb.stencil.assign(fb.stencil.size(), c.clearStencil);
-    Pipeline pipe(fb, profile);
-    for (const Pass& pass : c.passes) {
-        pipe.state = pass.state;
-        const ProgramTraits traits{pass.program == ProgramKind::WriteDepth, pass.program == ProgramKind::DiscardOdd, true,
-                                   pass.earlyFragmentTests, pass.program != ProgramKind::Plain};
-        for (std::size_t i = 0; i + 2 < pass.triangles.size(); i += 3) {
-            const Vertex v[3] = {pass.triangles[i], pass.triangles[i + 1], pass.triangles[i + 2]};
-            pipe.drawTriangle(v, CaseProgram{pass.program}, traits);
-        }
-    }
-    Counts counts;
-    counts.samplesPassed = pipe.counts().samplesPassed;
-    counts.invocations = pipe.counts().invocations - pipe.counts().helpers;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x)
-            if (fb.color[fb.index(x, y)][0] != 0) counts.markWritten(x, y);
-    return counts;
-}
-
-void crossCheck(const std::string& driver, const std::string& profileName, bool exactRandom = true, int minRandomMatches = 0) {
+void crossCheck(const std::string& driver, const std::string& profileName) {
     const DriverRun run = runDriver(driver);
     ASSERT_EQ(run.status, 0) << "weft_mesa_check could not run on " << driver << ":\n" << run.output;
     ASSERT_NE(run.output.find("RENDERER " + driver), std::string::npos) << "not Mesa's " << driver << ":\n" << run.output;
-    const std::map<std::string, Counts> gl = parse(run.output);
+    ASSERT_EQ(run.output.find("NOSTATS"), std::string::npos) << driver << " lacks pipeline statistics:\n" << run.output;
+    const std::map<std::string, Counts> gl = parseCaseLines(run.output);
     const Profile& profile = findProfile(profileName);
     int compared = 0;
     for (const Case& c : allCases()) {
@@ -107,6 +60,9 @@ void crossCheck(const std::string& driver, const std::string& profileName, bool 
         EXPECT_EQ(h.invocations, g.invocations) << driver << " " << c.name << " program invocations";
         EXPECT_EQ(h.written, g.written) << driver << " " << c.name << " pixels written";
         EXPECT_EQ(h.writtenHash, g.writtenHash) << driver << " " << c.name << " which pixels were written";
+        EXPECT_EQ(h.fsInvocations, g.fsInvocations) << driver << " " << c.name << " FRAGMENT_SHADER_INVOCATIONS";
+        EXPECT_EQ(h.clipIn, g.clipIn) << driver << " " << c.name << " CLIPPING_INPUT_PRIMITIVES";
+        EXPECT_EQ(h.clipOut, g.clipOut) << driver << " " << c.name << " CLIPPING_OUTPUT_PRIMITIVES";
         ++compared;
     }
     EXPECT_GE(compared, 100);  // the fixed cases and the random pass lists (those needing bounds skip on llvmpipe)

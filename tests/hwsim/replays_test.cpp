@@ -97,7 +97,7 @@ TEST(HwsimProfiles, ChangeCostsButNeverResults) {
 TEST(HwsimCli, ListsProfilesAndWritesStats) {
     const test::CommandResult list = test::runWeft("hwsim --list-profiles");
     EXPECT_EQ(list.status, 0);
-    for (const char* name : {"ideal", "mesa-llvmpipe", "mesa-softpipe", "geforce-7800", "modern-desktop"})
+    for (const char* name : {"ideal", "mesa-llvmpipe", "mesa-softpipe", "geforce-7800", "modern-desktop", "nvidia-h200"})
         EXPECT_NE(list.output.find(name), std::string::npos) << name;
     test::TempDir dir;
     const test::CommandResult run = test::runWeft("hwsim segovia.table1 --profile geforce-7800 --set width=32 --set height=32 --stats " +

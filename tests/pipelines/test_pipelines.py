@@ -154,6 +154,13 @@ class Resume(unittest.TestCase):
         self.assertTrue(any(l.startswith("resume: 1 temporary files from interrupted writes") for l in lines), lines)
         self.assertIn("#SBATCH --array=2,4-5", r.stdout)
 
+    def test_the_module_and_the_command_say_the_same_of_each_frame(self):
+        self.assertIsNotNone(weftpipe.weft_module(WEFT), "the weft module beside %s does not load" % WEFT)
+        paths = [weftpipe.expand(self.out, f) for f in range(1, 7)]
+        by_module = weftpipe.frame_status(WEFT, paths)
+        self.assertEqual(by_module, weftpipe._frame_status_from_command(WEFT, paths))
+        self.assertEqual([by_module[p].split(":")[0] for p in paths], ["ok", "missing", "ok", "corrupt", "corrupt", "ok"])
+
     def test_renders_only_the_frames_that_are_not_complete(self):
         before = self.stamps()
         r = self.resume("--local")

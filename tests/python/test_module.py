@@ -113,6 +113,20 @@ class SameAsTheCommand(unittest.TestCase):
         r = weft.load_scene(SMOKE).render(res=(32, 32), params={"step": 2})
         self.assertEqual(weft.diff(r, a)["all"]["rmse"], 0.0)
 
+    def test_check_is_weft_check(self):
+        good, cut, gone = (os.path.join(self.tmp.name, n) for n in ("good.exr", "cut.exr", "gone.exr"))
+        for path in (good, cut):
+            self.assertEqual(cli("render", SMOKE, "--res", "16x16", "-o", path).returncode, 0)
+        with open(cut, "r+b") as f:
+            f.truncate(os.path.getsize(cut) // 2)
+        paths = [good, cut, gone]
+        by_module = weft.check(paths)
+        by_command = dict(reversed(line.split("\t", 1)) for line in cli("check", *paths).stdout.splitlines())
+        self.assertEqual(by_module, by_command)
+        self.assertEqual(by_module[good], "ok")
+        self.assertEqual(by_module[gone], "missing")
+        self.assertTrue(by_module[cut].startswith("corrupt: "), by_module[cut])
+
     def test_a_dict_is_a_scene_file(self):
         scene = {"volumes": [{"file": "smoke_small.vdb"}], "render": {"technique": "volume.raymarch"}}
         s = weft.load_scene(scene, base_dir=os.path.join(ROOT, "data"))

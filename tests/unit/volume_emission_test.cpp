@@ -203,13 +203,53 @@ TEST(VolumeGrids, AGridOfItsOwnFileIsResampledToTheDensity) {
     EXPECT_NE(s.volumes[0].grids.find("emission=glow ("), std::string::npos) << s.volumes[0].grids;
 }
 
-TEST(VolumeEmission, TechniquesThatDoNotRenderEmissionSaySoInOneLine) {
+// The slice techniques on the slab: segments between slices carry the
+// data and the emission linearly, the ramps at the faces included, so
+// they land on the closed form too (1e-3, measured 2e-4 at spacing 0.5).
+TEST(VolumeEmission, SliceTechniquesMatchTheSlabClosedForm) {
     test::TempDir dir;
-    test::writeSlabVdb(dir / "fire.vdb", 16, 8, 0.1, {"heat"});
+    const std::string tf = R"(, "transfer_function": {"range": [0, 1], "points": [{"s": 0, "color": [0, 0, 0], "extinction": 0}, {"s": 1, "color": [0, 0, 0], "extinction": )" +
+                           std::to_string(kSigma) + "}]}";
+    const std::string scene = slabScene(dir, tf);
+    const double expected = closedForm();
+    for (const char* t : {"volume.preint", "volume.adaptive3d"})
+        for (const char* spacing : {"spacing=1", "spacing=0.5"}) {
+            const RenderOutcome out = test::render(scene, "5x5", {spacing}, t);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(out.image.at(2, 2, c), expected, 1e-3 * expected) << t << " " << spacing << ", channel " << c;
+            EXPECT_GT(out.counters.at("preintegration.emission_tables"), 0) << t;
+        }
+}
+
+// A volume without emission builds no emission weights (and counts none);
+// its images are those the techniques rendered before emission existed.
+TEST(VolumeEmission, SliceTechniquesBuildNoEmissionTablesWithoutEmission) {
+    test::TempDir dir;
+    test::writeSlabVdb(dir / "smoke.vdb", 16, 8, 0.1);
     for (const char* t : {"volume.preint", "volume.adaptive3d"}) {
-        const std::string e = test::errorOf([&] { test::render((dir / "fire.vdb").string(), "8x8", {}, t); });
-        EXPECT_NE(e.find(std::string(t) + " does not render volume emission"), std::string::npos) << e;
-        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+        const RenderOutcome out = test::render((dir / "smoke.vdb").string(), "8x8", {}, t);
+        EXPECT_EQ(out.counters.count("preintegration.emission_tables"), 0u) << t;
+        EXPECT_GT(out.counters.at("composite.ops"), 0) << t;
+    }
+}
+
+// A small fire (procedural density and temperature): the slice techniques
+// converge to raymarch's image at fine steps. RMSE relative to the mean
+// pixel; measured: preint 0.4%, adaptive3d 0.5% at spacing 0.25.
+TEST(VolumeEmission, SliceTechniquesMatchRaymarchOnAFire) {
+    test::TempDir dir;
+    test::writeText(dir / "fire.json", R"({"camera": {"eye": [0, 0.05, 2.3], "target": [0, 0.02, 0], "fov": 38},
+        "volumes": [{"procedural": "fire", "resolution": 32, "emission": {"blackbody_intensity": 0.05},
+                     "transfer_function": {"points": [{"s": 0, "color": [0.3, 0.3, 0.3], "extinction": 0},
+                                                      {"s": 1, "color": [0.3, 0.3, 0.3], "extinction": 0.3}]}}]})");
+    const std::string scene = (dir / "fire.json").string();
+    const Image reference = test::render(scene, "24x24", {"step=0.05"}, "volume.raymarch").image;
+    double mean = 0;
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 24; ++x) mean += reference.at(x, y, 0) / (24.0 * 24.0);
+    ASSERT_GT(mean, 0.05);  // the fire glows
+    for (const char* t : {"volume.preint", "volume.adaptive3d"}) {
+        const Image img = test::render(scene, "24x24", {"spacing=0.25"}, t).image;
+        EXPECT_LT(test::rmse(img, reference), 0.01 * mean) << t;
     }
 }
 
@@ -220,12 +260,33 @@ TEST(VolumeEmission, ExtremeEmissionStaysFinite) {
     for (const std::string settings : {R"({"temperature_scale": 1e9, "blackbody_intensity": 1e12})", R"({"temperature_offset": -1e9})",
                                        R"({"temperature_scale": 1e-300})"}) {
         test::writeText(dir / "s.json", R"({"volumes": [{"file": "slab.vdb", "grids": {"temperature": "heat"}, "emission": )" + settings + "}]}");
-        for (const char* t : {"volume.raymarch", "volume.singlescatter", "mesh.pathtrace"}) {
+        for (const char* t : {"volume.raymarch", "volume.singlescatter", "mesh.pathtrace", "volume.preint", "volume.adaptive3d"}) {
             const Image img = test::render((dir / "s.json").string(), "6x6", {}, t, 0, 2).image;
             for (int y = 0; y < img.height(); ++y)
                 for (int x = 0; x < img.width(); ++x)
                     for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(img.at(x, y, c))) << t << " " << settings;
         }
+    }
+}
+
+// Huge emission in a nearly opaque medium: each segment's emission weights
+// shrink to 1/extinction, nothing overflows.
+TEST(VolumeEmission, SliceTechniquesStayFiniteAtHugeEmissionAndExtinction) {
+    test::TempDir dir;
+    test::writeSlabVdb(dir / "slab.vdb", 16, 8, 0.1, {"heat"});
+    test::writeText(dir / "s.json", R"({"volumes": [{"file": "slab.vdb", "grids": {"temperature": "heat"},
+        "emission": {"temperature_scale": 1e9, "blackbody_intensity": 1e12},
+        "transfer_function": {"points": [{"s": 0, "color": [1, 1, 1], "extinction": 0}, {"s": 0.01, "color": [1, 1, 1], "extinction": 1e30}]}}]})");
+    for (const char* t : {"volume.preint", "volume.adaptive3d"}) {
+        const Image img = test::render((dir / "s.json").string(), "6x6", {}, t).image;
+        double sum = 0;
+        for (int y = 0; y < img.height(); ++y)
+            for (int x = 0; x < img.width(); ++x)
+                for (int c = 0; c < 4; ++c) {
+                    ASSERT_TRUE(std::isfinite(img.at(x, y, c))) << t;
+                    sum += img.at(x, y, c);
+                }
+        EXPECT_GT(sum, 0) << t;
     }
 }
 

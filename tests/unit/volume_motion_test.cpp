@@ -14,6 +14,7 @@
 
 #include "core/scene/scene.hpp"
 #include "core/volume/volume_grids.hpp"
+#include "tests/support/moving_blob.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -21,56 +22,14 @@ using namespace weft;
 
 namespace {
 
-constexpr double kVoxel = 1.0 / 32;
-constexpr double kFps = 24;
+using test::writeBlob;
 
-// A soft Gaussian blob (sigma 4 voxels, peak `peak`) at the origin and a
-// velocity grid "vel" of constant `velocity` (world units per second: its
-// background, so every lookup sees it). `fill` sets some voxels of the
-// velocity grid to it as well (values a simulation stores).
-void writeBlob(const std::filesystem::path& path, const openvdb::Vec3s& velocity, float peak = 0.5f, bool fill = false) {
-    initVdb();
-    auto density = openvdb::FloatGrid::create(0.0f);
-    density->setName("density");
-    density->setTransform(openvdb::math::Transform::createLinearTransform(kVoxel));
-    auto acc = density->getAccessor();
-    for (int x = -12; x <= 12; ++x)
-        for (int y = -12; y <= 12; ++y)
-            for (int z = -12; z <= 12; ++z) {
-                const double r2 = x * x + y * y + z * z;
-                if (r2 <= 144) acc.setValue(openvdb::Coord(x, y, z), float(peak * std::exp(-r2 / 32.0)));
-            }
-    auto vel = openvdb::Vec3SGrid::create(velocity);
-    vel->setName("vel");
-    vel->setTransform(density->transform().copy());
-    if (fill) vel->denseFill(openvdb::CoordBBox(openvdb::Coord(-4), openvdb::Coord(4)), velocity, true);
-    openvdb::io::File file(path.string());
-    file.write({density, vel});
-    file.close();
-}
-
-const char* kTf = R"("transfer_function": {"range": [0, 1], "points": [{"s": 0, "color": [1, 0.8, 0.6], "extinction": 0},
-                                                                     {"s": 1, "color": [1, 0.8, 0.6], "extinction": 0.3}]})";
-
-// The blob with its velocity, camera fixed, shutter [0, 1] (one-sided, so
-// that motion one way and the other do not give the same picture).
 std::string movingScene(const test::TempDir& dir, const std::string& shutter = "[0, 1]", const std::string& extra = "") {
-    test::writeText(dir / "moving.json", std::string(R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": 16, "shutter": )") + shutter +
-                                             R"(}, "volumes": [{"file": "blob.vdb", "grids": {"velocity": "vel"}, "motion": {"fps": 24})" + extra +
-                                             ", " + kTf + "}]}");
-    return (dir / "moving.json").string();
+    return test::movingBlobScene(dir, test::transferFunctionLook(), shutter, extra);
 }
 
-// The static blob and a camera keyed at frames -1 and 1 moving by
-// -velocity / fps per frame (frame 0 rendered): the same relative motion.
 std::string movingCameraScene(const test::TempDir& dir, double velocityX) {
-    const double d = velocityX / kFps;
-    const std::string a = std::to_string(d), b = std::to_string(-d);
-    test::writeText(dir / "camera.json", R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": 16, "shutter": [0, 1], "keys": [
-                                              {"frame": -1, "eye": [)" + a + R"(, 0, 3], "target": [)" + a + R"(, 0, 0]},
-                                              {"frame": 1, "eye": [)" + b + R"(, 0, 3], "target": [)" + b + R"(, 0, 0]}]},
-                                            "volumes": [{"file": "blob.vdb", )" + kTf + "}]}");
-    return (dir / "camera.json").string();
+    return test::movingCameraBlobScene(dir, test::transferFunctionLook(), velocityX);
 }
 
 double alphaSum(const Image& img) {
@@ -172,7 +131,7 @@ TEST(VolumeMotion, WrongSettingsAreOneLineErrors) {
               std::string::npos);
     EXPECT_NE(sceneWith(R"("grids": {"velocity": "v"})").find("no grid named 'v' for velocity (grids: density, vel)"), std::string::npos);
     EXPECT_NE(sceneWith(R"("grids": {"velocity": "vel"}, "motion": {"fps": 0})").find("motion.fps = 0 is outside"), std::string::npos);
-    for (const char* t : {"volume.singlescatter", "volume.preint", "volume.adaptive3d", "mesh.pathtrace"}) {
+    for (const char* t : {"volume.preint", "volume.adaptive3d"}) {
         const std::string e = test::errorOf([&] { test::render(movingScene(dir), "8x8", {}, t); });
         EXPECT_NE(e.find(std::string(t) + " does not blur volumes by their velocity"), std::string::npos) << e;
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
