@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -159,6 +160,10 @@ PieceWeights pieceWeights(double tau0, double tau1, double h) {
     PieceWeights out;
     out.depth = 0.5 * (tau0 + tau1) * h;
     if (!(out.depth > 0)) return out;
+    if (!std::isfinite(out.depth)) {  // opaque at its front: extinction x length overflows
+        out.w0 = 1;
+        return out;
+    }
     double mean = 0, opaque = 0;  // integrals of exp(-D(u)) and 1 - exp(-D(u)) over [0, 1]
     const double uEnd = depthQuadrature(tau0 * h, 0.5 * (tau1 - tau0) * h, out.depth, [&](double, double w, double em) {
         mean += w * (1 + em);
@@ -183,6 +188,7 @@ struct EmissionMoments {
 EmissionMoments pieceEmission(double tau0, double tau1, double h, double f0, double fh) {
     const double depth = 0.5 * (tau0 + tau1) * h;
     if (!(depth > 0)) return {fh * (1 - f0 - 0.5 * fh), fh * (f0 + 0.5 * fh)};  // transparent: the ramp's area
+    if (!std::isfinite(depth)) return {};  // opaque within a vanishing part of the piece (extinction x length overflows)
     EmissionMoments m;
     depthQuadrature(tau0 * h, 0.5 * (tau1 - tau0) * h, depth, [&](double u, double w, double em) {
         const double t = w * (1 + em), back = f0 + u * fh;
@@ -299,7 +305,10 @@ PreintSample PreintegrationTable::integrateSegment(const TransferFunction& tf, d
 EmissionWeights PreintegrationTable::integrateEmission(const TransferFunction& tf, double sFront, double sBack, double length) {
     if (!(length >= 0)) throw Error("pre-integration: segment length must be >= 0, got " + std::to_string(length));
     const EmissionMoments m = SegmentIntegrator(tf).emission(sFront, sBack, length);
-    return {float(m.front * length), float(m.back * length)};
+    // Saturate rather than overflow: a clear segment longer than 3e38 voxels
+    // would weigh more than a float holds.
+    const auto weight = [length](double moment) { return float(std::min(moment * length, double(std::numeric_limits<float>::max()))); };
+    return {weight(m.front), weight(m.back)};
 }
 
 PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector<double> lengths, int resolution,

@@ -67,8 +67,9 @@ inline std::string sceneKeys(const BlobLook& look) { return look.scene.empty() ?
 // The blob with its velocity, camera fixed, shutter [0, 1] (one-sided, so
 // that motion one way and the other do not give the same picture).
 inline std::string movingBlobScene(const TempDir& dir, const BlobLook& look, const std::string& shutter = "[0, 1]",
-                                   const std::string& extra = "") {
-    writeText(dir / "moving.json", R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": 16, "shutter": )" + shutter +
+                                   const std::string& extra = "", int fov = 16) {
+    writeText(dir / "moving.json", R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": )" + std::to_string(fov) +
+                                       R"(, "shutter": )" + shutter +
                                        R"(}, "volumes": [{"file": "blob.vdb", "grids": {"velocity": "vel"}, "motion": {"fps": 24})" + extra +
                                        ", " + look.volume + "}]" + sceneKeys(look) + "}");
     return (dir / "moving.json").string();
