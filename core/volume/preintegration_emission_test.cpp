@@ -7,21 +7,13 @@
 
 #include "core/base/error.hpp"
 #include "core/volume/preintegration.hpp"
+#include "tests/support/transfer_functions.hpp"
 
 using namespace weft;
 
 namespace {
 
-// A dense peak at s = 0.5 and a step at s = 0.7, as the colour tests use.
-TransferFunction peakedTf() {
-    return TransferFunction(0, 1, {{0.1, {0.2, 0.3, 1.0}, 0.0},
-                                   {0.45, {0.2, 0.3, 1.0}, 0.05},
-                                   {0.5, {1.0, 0.2, 0.1}, 40.0},
-                                   {0.55, {1.0, 1.0, 0.2}, 0.05},
-                                   {0.7, {0.0, 1.0, 0.0}, 2.0},
-                                   {0.7, {1.0, 0.0, 1.0}, 0.3},
-                                   {0.9, {0.5, 0.5, 0.5}, 1.0}});
-}
+using test::peakedTf;
 
 TransferFunction constantTf(double extinction) { return TransferFunction(0, 1, {{0.0, {1, 1, 1}, extinction}, {1.0, {1, 1, 1}, extinction}}); }
 

@@ -12,6 +12,7 @@
 #include "core/base/error.hpp"
 #include "core/volume/preintegration.hpp"
 #include "core/volume/volume_ray.hpp"
+#include "tests/support/transfer_functions.hpp"
 
 using namespace weft;
 
@@ -24,16 +25,7 @@ TransferFunction smoothTf() {
                                    {1.0, {1.0, 0.85, 0.65}, 0.6}});
 }
 
-// A sharp, dense peak at s = 0.5, a step at s = 0.7, constant below 0.1 and above 0.9.
-TransferFunction peakedTf() {
-    return TransferFunction(0, 1, {{0.1, {0.2, 0.3, 1.0}, 0.0},
-                                   {0.45, {0.2, 0.3, 1.0}, 0.05},
-                                   {0.5, {1.0, 0.2, 0.1}, 40.0},
-                                   {0.55, {1.0, 1.0, 0.2}, 0.05},
-                                   {0.7, {0.0, 1.0, 0.0}, 2.0},
-                                   {0.7, {1.0, 0.0, 1.0}, 0.3},
-                                   {0.9, {0.5, 0.5, 0.5}, 1.0}});
-}
+using test::peakedTf;
 
 TransferFunction constantTf(double extinction, std::array<double, 3> color = {0.9, 0.5, 0.2}) {
     return TransferFunction(0, 1, {{0.0, color, extinction}, {1.0, color, extinction}});

@@ -66,14 +66,6 @@ Image renderWith(const std::string& scene, const std::string& technique, const s
     return test::render(scene, "24x16", sets, technique, 0, spp).image;
 }
 
-double peakOf(const Image& img) {
-    double m = 0;
-    for (int y = 0; y < img.height(); ++y)
-        for (int x = 0; x < img.width(); ++x)
-            for (int c = 0; c < 3; ++c) m = std::max(m, double(img.at(x, y, c)));
-    return m;
-}
-
 struct Technique {
     std::string name;
     std::vector<std::string> sets;
@@ -148,7 +140,7 @@ TEST(VolumeColor, ATintedSlabScattersLikeTheEquivalentUniformMedium) {
     const std::string uniform = slabScene(dir, "uniform.json", R"({"absorb": [0.85, 1.2, 0.55], "scatter": [0.25, 1, 0.75]})");
     for (const Technique& t : scatteringTechniques()) {
         const Image a = renderWith(tinted, t.name, t.sets), b = renderWith(uniform, t.name, t.sets);
-        const double peak = peakOf(b);
+        const double peak = test::peakColourOf(b);
         ASSERT_GT(peak, 0.01) << t.name;
         EXPECT_LT(compareImages(a, b).overall.maxAbs, 1e-4 * peak) << t.name << " " << (t.sets.empty() ? "" : t.sets[0]);
     }
@@ -171,8 +163,8 @@ TEST(VolumeColor, ExtremeColoursRenderTheirLimits) {
         writeTintedSlab(dir / "slab.vdb", {0, 0, 0});
         const Image black = renderWith(white, t.name, t.sets, 4);
         writeTintedSlab(dir / "slab.vdb", {1, 1, 1});
-        ASSERT_GT(peakOf(untinted), 0.01) << t.name;
-        EXPECT_EQ(peakOf(black), 0.0) << t.name;
+        ASSERT_GT(test::peakColourOf(untinted), 0.01) << t.name;
+        EXPECT_EQ(test::peakColourOf(black), 0.0) << t.name;
         double alphaBlack = 0, alphaUntinted = 0;
         for (int y = 0; y < black.height(); ++y)
             for (int x = 0; x < black.width(); ++x) {

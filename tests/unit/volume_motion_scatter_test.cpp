@@ -50,14 +50,6 @@ struct Stats {
     }
 };
 
-double peakOf(const Image& img) {
-    double m = 0;
-    for (int y = 0; y < img.height(); ++y)
-        for (int x = 0; x < img.width(); ++x)
-            for (int c = 0; c < 3; ++c) m = std::max(m, double(img.at(x, y, c)));
-    return m;
-}
-
 struct BlurCase {
     std::string technique;
     std::vector<std::string> sets;
@@ -74,7 +66,7 @@ void expectVelocityBlurEqualsCameraBlur(const BlurCase& c) {
     const Image camera = renderWith(cameraScene, c.technique, c.sets, c.spp);
     const Image camera2 = renderWith(cameraScene, c.technique, c.sets, c.spp, 2);
     const Image still = renderWith(test::movingBlobScene(dir, look, "[0, 0]"), c.technique, c.sets, c.spp);
-    const double peak = peakOf(camera), noise = test::rmse(camera, camera2), error = test::rmse(moving, camera);
+    const double peak = test::peakColourOf(camera), noise = test::rmse(camera, camera2), error = test::rmse(moving, camera);
     std::printf("%s %s: velocity vs camera blur RMSE %.5f, seed noise %.5f, peak %.4f, vs still %.5f\n", c.technique.c_str(),
                 c.sets.empty() ? "" : c.sets.front().c_str(), error, noise, peak, test::rmse(moving, still));
     ASSERT_GT(peak, 0.02);
@@ -122,7 +114,7 @@ TEST(VolumeMotionScatter, PathtraceMajorantsCoverWhereTheVolumeMoves) {
     const Image singleMoving = render("[0, 1]", single, 1);
     const Image singleStill = render("[0, 0]", single, 1);
     EXPECT_NEAR(totalOf(singleMoving), totalOf(singleStill), 0.04 * totalOf(singleStill));
-    EXPECT_LT(peakOf(singleMoving), 0.7 * peakOf(singleStill));
+    EXPECT_LT(test::peakColourOf(singleMoving), 0.7 * test::peakColourOf(singleStill));
 }
 
 TEST(VolumeMotionScatter, SameImageOnAnyThreadCount) {
