@@ -90,8 +90,8 @@ Medium::Medium(const std::vector<Volume>& volumes) {
         e.coefficientMax = maxChannel(e.absorb + e.scatter);
         if (!(e.coefficientMax > 0) && !v.emission) continue;  // nothing to meet
         const int reach = v.motion ? brickReach(v.motionReach) : 0;  // a moving volume's bricks bound where it moves
-        e.bricks = dilatedBrickBounds(*densityBricks(*v.grid), reach);
-        if (v.emission) e.emissiveBricks = dilatedBrickBounds(*emissiveBricks(*v.emission), reach), e.emissionRate = perWorld;
+        e.bricks = dilatedBrickBounds(densityBricks(*v.grid), reach);
+        if (v.emission) e.emissiveBricks = dilatedBrickBounds(emissiveBricks(*v.emission), reach), e.emissionRate = perWorld;
         volumes_.push_back(e);
     }
     if (volumes_.size() < 2) return;

@@ -26,14 +26,14 @@ openvdb::FloatGrid::Ptr dilatedAlong(const openvdb::FloatGrid& in, int axis, int
 
 }  // namespace
 
-openvdb::FloatGrid::Ptr dilatedBrickBounds(const openvdb::FloatGrid& bricks, int radius) {
-    if (radius <= 0) return bricks.deepCopy();
+openvdb::FloatGrid::Ptr dilatedBrickBounds(openvdb::FloatGrid::Ptr bricks, int radius) {
+    if (radius <= 0) return bricks;
     if (radius > kMaxBrickRadius) {
-        float largest = bricks.background();
-        for (auto it = bricks.cbeginValueOn(); it; ++it) largest = std::max(largest, *it);
+        float largest = bricks->background();
+        for (auto it = bricks->cbeginValueOn(); it; ++it) largest = std::max(largest, *it);
         return openvdb::FloatGrid::create(largest);
     }
-    openvdb::FloatGrid::Ptr out = dilatedAlong(bricks, 0, radius);
+    openvdb::FloatGrid::Ptr out = dilatedAlong(*bricks, 0, radius);
     out = dilatedAlong(*out, 1, radius);
     return dilatedAlong(*out, 2, radius);
 }

@@ -43,8 +43,9 @@ inline void emplaceMotion(std::optional<MotionLookup>& slot, const Volume& volum
 // A sparse grid of per-brick bounds (one value per 8^3 voxels, as the
 // majorants keep them) raised so that each brick also bounds every brick
 // within `radius` bricks (Chebyshev distance): what a lookup advected by up
-// to radius x 8 voxels can read. Separable: one pass per axis.
-openvdb::FloatGrid::Ptr dilatedBrickBounds(const openvdb::FloatGrid& bricks, int radius);
+// to radius x 8 voxels can read. Separable: one pass per axis. Radius 0
+// (a volume that does not move) hands `bricks` back as it is.
+openvdb::FloatGrid::Ptr dilatedBrickBounds(openvdb::FloatGrid::Ptr bricks, int radius);
 
 // Bricks a lookup advected by `reach` index units can move across.
 inline int brickReach(double reach) { return reach > 0 ? int(std::ceil(reach / 8.0)) : 0; }

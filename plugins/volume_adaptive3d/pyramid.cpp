@@ -24,11 +24,12 @@ std::vector<float> backgrounds(const std::vector<SliceVolume>& volumes, std::siz
 
 Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, const SliceSetup& slices, int lmax,
                  int paddedWidth, int paddedHeight, int imageWidth, int imageHeight) {
+    const bool emits = sceneEmits(volumes);
     for (int l = 0; l <= lmax; ++l) {
         PyramidLevel level;
         level.rays = makeLevelRays(camera, volumes, slices, l, paddedWidth, paddedHeight, imageWidth, imageHeight);
         level.s = backgrounds(volumes, level.rays.dir.size());
-        if (sceneEmits(volumes)) level.e.assign(level.s.size(), Vec3f(0.0f));
+        if (emits) level.e.assign(level.s.size(), Vec3f(0.0f));
         level.d.assign(level.rays.dir.size(), 1.0f);
         level.tilesX = (level.rays.width + kTile - 1) / kTile;
         level.tilesY = (level.rays.height + kTile - 1) / kTile;
@@ -38,7 +39,7 @@ Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, 
     }
     const std::size_t n = levels_[0].rays.dir.size();
     sPrev = backgrounds(volumes, n);
-    if (sceneEmits(volumes)) ePrev.assign(sPrev.size(), Vec3f(0.0f));
+    if (emits) ePrev.assign(sPrev.size(), Vec3f(0.0f));
     iPrev.assign(n, 0);
     color.assign(n, SegmentCompositor{});
 }
@@ -107,9 +108,9 @@ template <bool kOne, bool kSurfaces>
     const float fx = (x & 1) ? 0.25f : 0.75f, fy = (y & 1) ? 0.25f : 0.75f;  // weight of the second parent
     const int xa = std::clamp(x0, 0, cw - 1), xb = std::clamp(x0 + 1, 0, cw - 1);
     const int ya = std::clamp(y0, 0, ch - 1), yb = std::clamp(y0 + 1, 0, ch - 1);
-    auto blend = [&](const float* v) {
-        const float top = (1 - fx) * v[ya * cw + xa] + fx * v[ya * cw + xb];
-        const float bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
+    auto blend = [&](const auto* v) {  // data and distances (float), emission (Vec3f)
+        const auto top = (1 - fx) * v[ya * cw + xa] + fx * v[ya * cw + xb];
+        const auto bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
         return (1 - fy) * top + fy * bottom;
     };
     fine.d[idx] = blend(coarse.d.data());
@@ -118,26 +119,11 @@ template <bool kOne, bool kSurfaces>
     } else {
         const std::size_t fn = fine.rays.dir.size(), cn = coarse.rays.dir.size();
         for (std::size_t k = 0; k < sc_.volumes.size(); ++k) fine.s[k * fn + idx] = blend(coarse.s.data() + k * cn);
-        if (emits_) {
-            const int parents[4] = {ya * cw + xa, ya * cw + xb, yb * cw + xa, yb * cw + xb};
-            synthesizeEmission(pyramid, l, idx, parents, fx, fy);
-        }
+        if (emits_)
+            for (std::size_t k = 0; k < sc_.volumes.size(); ++k) fine.e[k * fn + idx] = blend(coarse.e.data() + k * cn);
     }
     if constexpr (kSurfaces) fine.d[idx] = surfaceBound(pyramid, l, idx, slice, fine.d[idx]);
     ++syntheses_;
-}
-
-// The same weights for the emission of each volume (parents: top-left,
-// top-right, bottom-left, bottom-right on the coarser level).
-void SliceWorker::synthesizeEmission(Pyramid& pyramid, int l, int idx, const int* parents, float fx, float fy) {
-    PyramidLevel& fine = pyramid.level(l);
-    const PyramidLevel& coarse = pyramid.level(l + 1);
-    const std::size_t fn = fine.rays.dir.size(), cn = coarse.rays.dir.size();
-    for (std::size_t k = 0; k < sc_.volumes.size(); ++k) {
-        const Vec3f* v = coarse.e.data() + k * cn;
-        const Vec3f top = v[parents[0]] * (1 - fx) + v[parents[1]] * fx, bottom = v[parents[2]] * (1 - fx) + v[parents[3]] * fx;
-        fine.e[k * fn + idx] = top * (1 - fy) + bottom * fy;
-    }
 }
 
 float SliceWorker::oracleDistance(int k, const Vec3d& p) {

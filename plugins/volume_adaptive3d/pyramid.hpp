@@ -129,7 +129,6 @@ private:
     float sampleVolumes(PyramidLevel& level, int l, int idx, int slice, const Vec3d& p);
     void compositeOneVolume(Pyramid& pyramid, int idx, int slice);
     void compositeVolumes(Pyramid& pyramid, int idx, int slice);
-    void synthesizeEmission(Pyramid& pyramid, int l, int idx, const int* parents, float fx, float fy);
 
     SliceContext& sc_;
     // Volume k's oracle distance at reference position p, in reference voxels.
