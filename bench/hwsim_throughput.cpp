@@ -12,12 +12,12 @@
 #include <chrono>
 #include <ctime>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 #include <string>
 
 #include "hwsim/pipeline.hpp"
 #include "hwsim/replay.hpp"
+#include "tests/hwsim/mesa_driver.hpp"
 
 using namespace weft::hwsim;
 
@@ -66,10 +66,8 @@ void report(const char* what, const Measure& m, double base) {
 #ifdef WEFT_GL_PROBE
 // Median ms per replay summed over its variants, from weft_gl_probe on llvmpipe.
 std::map<std::string, double> llvmpipeMs(int size) {
-    const char* vendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
-    const std::string cmd = std::string("env GALLIUM_DRIVER=llvmpipe LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless ") +
-                            (std::filesystem::exists(vendor) ? std::string("__EGL_VENDOR_LIBRARY_FILENAMES=") + vendor + " " : "") +
-                            WEFT_GL_PROBE + " --repeats 3 --sizes " + std::to_string(size) + " 2>/dev/null";
+    const std::string cmd = weft::crosscheck::mesaDriverEnv("llvmpipe") + WEFT_GL_PROBE + " --repeats 3 --sizes " + std::to_string(size) +
+                            " 2>/dev/null";
     std::map<std::string, double> ms;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return ms;

@@ -65,10 +65,11 @@ std::size_t baselineIndex(const ReplayResult& result) {
 std::string replayPredictions(const ReplayResult& result, const Profile& profile) {
     if (result.variants.empty()) return "";
     const CostModel& model = profile.cost;
-    const double base = predictedMs(model, result.variants[baselineIndex(result)].counters);
+    const ReplayVariant& baseline = result.variants[baselineIndex(result)];
+    const double base = predictedMs(model, baseline.counters);
     std::string out = "predicted time (" + profile.name + " cost model, " + model.calibration + "):\n";
     char line[200];
-    std::snprintf(line, sizeof line, "%-16s  %12s  %s\n", "variant", "predicted ms", ("speed-up vs " + result.variants[baselineIndex(result)].label).c_str());
+    std::snprintf(line, sizeof line, "%-16s  %12s  %s\n", "variant", "predicted ms", ("speed-up vs " + baseline.label).c_str());
     out += line;
     for (const ReplayVariant& v : result.variants) {
         const double ms = predictedMs(model, v.counters);

@@ -84,6 +84,18 @@ std::string rendererString() {
            reinterpret_cast<const char*>(glGetString(GL_VERSION));
 }
 
+namespace {
+
+// Fails with the driver's log of `object` unless its compile or link status is set.
+void requireStatus(GLint ok, GLuint object, void (*infoLog)(GLuint, GLsizei, GLsizei*, GLchar*), const char* what) {
+    if (ok) return;
+    char log[2048];
+    infoLog(object, sizeof log, nullptr, log);
+    fail(std::string(what) + ": " + log);
+}
+
+}  // namespace
+
 GLuint compileShader(GLenum type, const std::string& source) {
     GLuint s = glCreateShader(type);
     const char* text = source.c_str();
@@ -91,11 +103,7 @@ GLuint compileShader(GLenum type, const std::string& source) {
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        fail(std::string("shader compile: ") + log);
-    }
+    requireStatus(ok, s, glGetShaderInfoLog, "shader compile");
     return s;
 }
 
@@ -106,11 +114,7 @@ GLuint linkProgram(const std::string& vertexSource, const std::string& fragmentS
     glLinkProgram(prog);
     GLint ok = 0;
     glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        glGetProgramInfoLog(prog, sizeof log, nullptr, log);
-        fail(std::string("program link: ") + log);
-    }
+    requireStatus(ok, prog, glGetProgramInfoLog, "program link");
     return prog;
 }
 

@@ -15,6 +15,7 @@
 #include "core/base/error.hpp"
 #include "tests/hwsim/case_lines.hpp"
 #include "tests/hwsim/crosscheck_hwsim.hpp"
+#include "tests/hwsim/mesa_driver.hpp"
 
 namespace weft::crosscheck {
 namespace {
@@ -25,11 +26,7 @@ struct DriverRun {
 };
 
 DriverRun runDriver(const std::string& driver) {
-    // Mesa's EGL vendor even where another vendor (a GPU driver) is installed.
-    const char* mesaVendor = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
-    const std::string vendor = std::filesystem::exists(mesaVendor) ? std::string(" __EGL_VENDOR_LIBRARY_FILENAMES=") + mesaVendor : "";
-    const std::string cmd = "env GALLIUM_DRIVER=" + driver + " LIBGL_ALWAYS_SOFTWARE=1 EGL_PLATFORM=surfaceless" + vendor + " " +
-                            std::string(WEFT_MESA_CHECK) + " 2>&1";
+    const std::string cmd = mesaDriverEnv(driver) + std::string(WEFT_MESA_CHECK) + " 2>&1";
     DriverRun run;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return run;
