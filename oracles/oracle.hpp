@@ -43,6 +43,14 @@ struct OracleField {
     }
 };
 
+// The field of a volume whose data move by up to `reach` voxels while the
+// shutter is open (velocity motion blur: Volume::motionReach). Every
+// precomputed oracle's distance grows by at most one voxel per voxel
+// (oracles/feature_distance.hpp), and a feature moved by up to reach is at
+// most reach nearer, so each distance shrinks by the reach, never below
+// minDistance (one slice). A field that does not move is handed back as it is.
+OracleField paddedByReach(const OracleField& field, double reach, double minDistance);
+
 struct OracleInfo {
     std::string name;
     std::string summary;

@@ -89,6 +89,10 @@ std::string keyOf(const OracleInfo& oracle, const OracleContext& ctx) {
         std::snprintf(text, sizeof text, "emission:%016llx|", static_cast<unsigned long long>(emissionHash(*v.emission)));
         key += text;
     }
+    // The field grows as far as the volume's box, which a moving volume's
+    // reach pads (the same file under another shutter: another field).
+    const openvdb::CoordBBox box = v.indexBox();
+    for (int a = 0; a < 3; ++a) addNumber(key, box.min()[a]), addNumber(key, box.max()[a]);
     addNumber(key, ctx.sliceSpacing), addNumber(key, ctx.lmax), addNumber(key, ctx.epsilon);
     return key;
 }

@@ -98,6 +98,27 @@ TEST(FeatureDistance, StopsGrowingAtTheVolumesExtent) {
     EXPECT_LT(f.distance->activeVoxelCount(), openvdb::Index64(64 * 64 * 64));
 }
 
+// A moving volume's field: every distance (stored voxels, tiles and the
+// background) shrinks by the reach, never below the minimum; a still one is
+// handed back as it is.
+TEST(FeatureDistance, PaddingByTheReachShrinksEveryDistance) {
+    const Volume v = boxVolume(-12, 12);
+    openvdb::MaskGrid features(false);
+    features.tree().setValueOn(Coord(0));
+    const OracleField f = distanceToFeatures(features, {v, 1.0, 4, 0.01});  // cap 16
+    const OracleField padded = paddedByReach(f, 2.5, 1.0);
+    for (int k = 0; k <= 12; ++k)
+        EXPECT_FLOAT_EQ(distanceAt(padded, Coord(k, -k, 0)), std::max(1.0f, distanceAt(f, Coord(k, -k, 0)) - 2.5f)) << k;
+    EXPECT_FLOAT_EQ(distanceAt(padded, Coord(5000, 0, 0)), 13.5f);
+    EXPECT_FLOAT_EQ(padded.distance->background(), 13.5f);
+    EXPECT_FLOAT_EQ(paddedByReach(f, 1000, 1.0).distance->tree().getValue(Coord(7, 0, 0)), 1.0f);
+    EXPECT_EQ(paddedByReach(f, 0, 1.0).distance, f.distance);
+    OracleField constant;
+    constant.constant = 8;
+    EXPECT_FLOAT_EQ(paddedByReach(constant, 3, 1.0).constant, 5.0f);
+    EXPECT_EQ(paddedByReach(constant, 3, 1.0).distance, nullptr);
+}
+
 TEST(TransferFunctionBounds, ExactOverPiecewiseLinearExtinction) {
     const TransferFunction tf(0, 10, {{0, {1, 1, 1}, 0}, {0.5, {1, 1, 1}, 2}, {1, {1, 1, 1}, 1}});
     auto b = tf.extinctionBounds(0, 10);

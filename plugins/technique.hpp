@@ -65,6 +65,10 @@ struct TechniqueInfo {
     // (Volume::color); the host refuses a colour grid a scene names for
     // the others.
     bool scatters = false;
+    // Whether it blurs volumes that move by their velocity grids
+    // (Volume::motion) though its camera renders one instant; motionBlur
+    // techniques blur both. The host refuses moving volumes to the others.
+    bool velocityBlur = false;
 };
 
 // Throws when the scene holds volumes or meshes the technique does not

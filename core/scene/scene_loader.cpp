@@ -571,7 +571,7 @@ void requireStillVolumes(const Scene& scene, const std::string& technique) {
     for (const Volume& v : scene.volumes)
         if (v.motion)
             throw Error(technique + " does not blur volumes by their velocity; volume '" + v.source + "' moves (" + v.grids +
-                        ") while the shutter is open: render it with volume.raymarch, volume.singlescatter or mesh.pathtrace, or close the shutter (camera.shutter [0, 0])");
+                        ") while the shutter is open: render it with volume.raymarch, volume.singlescatter, volume.preint, volume.adaptive3d or mesh.pathtrace, or close the shutter (camera.shutter [0, 0])");
 }
 
 void requireNoColorGrids(const Scene& scene, const std::string& technique) {

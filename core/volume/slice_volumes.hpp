@@ -14,6 +14,7 @@
 #include "core/base/counters.hpp"
 #include "core/volume/segment_tables.hpp"
 #include "core/volume/slice_renderer.hpp"
+#include "core/volume/volume_motion.hpp"
 
 namespace weft {
 
@@ -67,30 +68,49 @@ private:
 
 // Trilinear lookups of every volume at reference index positions, of its
 // data and of its emission where it emits (deques: samplers hold accessors
-// by reference and must not move).
+// by reference and must not move). A moving volume (Volume::motion) is read
+// where its velocity advects the point from at the current shutter time
+// (setTime; core/volume/volume_motion.hpp), its data and emission alike.
 class SliceSamplers {
 public:
-    explicit SliceSamplers(const std::vector<SliceVolume>& volumes) : volumes_(volumes), emitting_(volumes.size(), nullptr) {
+    explicit SliceSamplers(const std::vector<SliceVolume>& volumes)
+        : volumes_(volumes), emitting_(volumes.size(), nullptr), moving_(volumes.size(), nullptr) {
         for (const SliceVolume& v : volumes) samplers_.emplace_back(*v.volume);
-        for (std::size_t k = 0; k < volumes.size(); ++k)
+        for (std::size_t k = 0; k < volumes.size(); ++k) {
             if (volumes[k].volume->emission) emitting_[k] = &emission_.emplace_back(*volumes[k].volume->emission);
+            if (volumes[k].volume->motion) moving_[k] = &motion_.emplace_back(*volumes[k].volume->motion);
+        }
     }
-    float sample(int k, const Vec3d& refIndexPos) const { return samplers_[k].sample(volumes_[k].toOwn(refIndexPos)); }
+    // The shutter time, frames from the frame, of the lookups that follow.
+    void setTime(double time) { time_ = time; }
+    float sample(int k, const Vec3d& refIndexPos) const { return samplers_[k].sample(own(k, refIndexPos)); }
     bool emits(int k) const { return emitting_[k] != nullptr; }
     // Volume k's emission at a reference index position (zero where it emits nothing).
     Vec3f emission(int k, const Vec3d& refIndexPos) const {
-        return emitting_[k] ? emitting_[k]->sample(volumes_[k].toOwn(refIndexPos)) : Vec3f(0.0f);
+        return emitting_[k] ? emitting_[k]->sample(own(k, refIndexPos)) : Vec3f(0.0f);
     }
     float background(int k) const { return samplers_[k].background(); }
     const ScalarSampler& sampler(int k) const { return samplers_[k]; }
     int size() const { return int(samplers_.size()); }
 
 private:
+    // Where volume k is read for a reference position: its own index space, advected when it moves.
+    Vec3d own(int k, const Vec3d& refIndexPos) const {
+        const Vec3d p = volumes_[k].toOwn(refIndexPos);
+        return moving_[k] ? moving_[k]->advected(p, time_) : p;
+    }
+
     const std::vector<SliceVolume>& volumes_;
     std::deque<ScalarSampler> samplers_;
     std::deque<EmissionSampler> emission_;
     std::vector<const EmissionSampler*> emitting_;  // per volume, null where it emits nothing
+    std::deque<MotionLookup> motion_;
+    std::vector<MotionLookup*> moving_;  // per volume, null where it stays still
+    double time_ = 0;
 };
+
+// Whether any of the volumes moves while the shutter is open (Volume::motion).
+bool sceneMoves(const std::vector<SliceVolume>& volumes);
 
 // Adds the emission of a segment whose ends emit eFront and eBack (radiance
 // per own voxel length) to its premultiplied colour (preintegration.hpp).

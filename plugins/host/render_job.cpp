@@ -218,7 +218,7 @@ CheckedRender checkRender(const RenderRequest& r, const Scene& scene) {
     if (scene.cameraMoves() && !info.motionBlur)
         throw Error("the camera moves while the shutter is open, and " + info.name +
                     " renders one instant: use volume.raymarch, volume.singlescatter or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
-    if (!info.motionBlur) requireStillVolumes(scene, info.name);
+    if (!info.motionBlur && !info.velocityBlur) requireStillVolumes(scene, info.name);
     if (!info.scatters) requireNoColorGrids(scene, info.name);
     return c;
 }

@@ -26,7 +26,15 @@
 // where one slice's emitted radiance changes by more than epsilon per voxel
 // (oracles/feature_distance.hpp), so a glowing region is never skipped as
 // if empty; the oracle cache keys an emitting volume by its emission too.
-// Velocity (moving volumes) is not rendered.
+//
+// Velocity motion blur: a moving volume (Volume::motion) is rendered in spp
+// passes, each at one shutter time (stratified, one jitter per seed) and
+// averaged with equal weights; a pass reads the volume where its velocity
+// advects each point from (core/volume/volume_motion.hpp). The pyramid
+// synthesises pixels from their neighbours' samples, so a pass shares one
+// instant. The oracle field is read at the unmoved point: its distances
+// shrink by the volume's reach (oracles/oracle.hpp: paddedByReach), so no
+// skip passes a feature wherever the velocity carried it.
 //
 // Meshes: each pixel's ray ends at its first surface (Embree, built only
 // when the scene has meshes). Skipping never passes it (SliceWorker::
@@ -35,7 +43,8 @@
 // volume.preint does; coarse pixels stop at the nearest surface of their
 // footprint and are refined where its surfaces differ in depth. The
 // surface is shaded and composited behind (core/lighting/surface_shading.hpp)
-// with --spp light samples at the pixel centre (the volume pass is one).
+// with --spp light samples at the pixel centre (the volume pass is one
+// unless a volume moves).
 //
 // Counters (the paper's operations): volume.samples (SAMPLE DATA),
 // oracle.samples (SAMPLE ORACLE), synthesis.ops (SYNTHESIZE DATA+ORACLE of
@@ -51,6 +60,7 @@
 #include <bit>
 
 #include "core/base/progress.hpp"
+#include "core/base/rng.hpp"
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/surface_shading.hpp"
 #include "core/volume/segment_tables.hpp"
@@ -66,6 +76,7 @@ namespace {
 
 const Counter kPreintegrationTables{"preintegration.tables", "pre-integration tables built"};
 const Counter kOracleBuilt{"oracle.built", "oracle fields built by this render (one per volume)"};
+const Counter kShutterPasses{"shutter.passes", "volume passes at distinct shutter times (spp of them when a volume moves)"};
 const Counter kOracleReused{"oracle.reused", "oracle fields reused from an earlier render of this process (same volume, emission, transfer function, spacing, lmax, epsilon)"};
 
 struct AdaptiveParams {
@@ -91,52 +102,89 @@ public:
         const int block = 1 << params_.lmax;
         const int pw = (s.width + block - 1) / block * block, ph = (s.height + block - 1) / block * block;
         const SliceSetup slices = makeSliceSetup(scene.camera, volumes, params_.slice.spacing, params_.lmax);
-        std::vector<OracleField> fields;
-        {
-            ScopedTimer timer(ctx.timings, "oracle");
-            for (const SliceVolume& v : volumes) {
-                SharedOracleField shared =
-                    sharedOracleField(oracle_, {*v.volume, params_.slice.spacing * v.lengthScale, params_.lmax, params_.epsilon});
-                ctx.counters.add(shared.reused ? kOracleReused : kOracleBuilt, 1);
-                fields.push_back(std::move(shared.field));
-            }
-        }
-        Pyramid pyramid(scene.camera, volumes, slices, params_.lmax, pw, ph, s.width, s.height);
+        const std::vector<OracleField> fields = oracleFields(volumes, ctx);
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // no BVH without meshes
-        std::vector<SurfaceHit> hits;
-        if (accel) hits = traceSurfaces(scene, *accel, vol, pyramid, slices, pw, ph, s);
+        Surfaces surfaces;
+        if (accel) surfaces = traceSurfaces(scene, *accel, vol, pw, ph, s);
         SliceTables tables(volumes, params_.slice.spacing, block, params_.slice.tableResolution, params_.slice.precision);
-        SliceContext sc{volumes, fields, slices, tables, params_.lmax, ctx.counters};
-        Progress progress("volume.adaptive3d", slices.imax + 1, s.showProgress);
-        for (int i = 0; i <= slices.imax; ++i) {
-            projectSlice(pyramid, sc, i);
-            progress.advance();
+        const std::vector<double> times = shutterTimes(scene, volumes, s);
+        Progress progress("volume.adaptive3d", std::int64_t(slices.imax + 1) * std::int64_t(times.size()), s.showProgress);
+        Image image;
+        for (double time : times) {
+            Pyramid pyramid(scene.camera, volumes, slices, params_.lmax, pw, ph, s.width, s.height);
+            if (accel) pyramid.setSurfaces(surfaces.tHit, slices);
+            SliceContext sc{volumes, fields, slices, tables, params_.lmax, ctx.counters, time};
+            for (int i = 0; i <= slices.imax; ++i) {
+                projectSlice(pyramid, sc, i);
+                progress.advance();
+            }
+            accumulate(image, pyramid.image(s.width, s.height), times.size());
         }
         progress.finish();
         ctx.counters.add(kSlices, slices.imax + 1);
         ctx.counters.add(kPreintegrationTables, tables.builtCount());
         if (const int n = tables.emissionBuiltCount()) ctx.counters.add(kEmissionTables, n);
-        Image image = pyramid.image(s.width, s.height);
-        if (accel) shadeSurfaces(scene, *accel, hits, pw, image, ctx);
+        if (sceneMoves(volumes)) ctx.counters.add(kShutterPasses, std::int64_t(times.size()));
+        if (accel) shadeSurfaces(scene, *accel, surfaces.hits, pw, image, ctx);
         return image;
     }
 
 private:
-    // Each padded level-0 pixel's first surface; their slices go to the pyramid.
-    static std::vector<SurfaceHit> traceSurfaces(const Scene& scene, const MeshAccel& accel, const Volume& vol, Pyramid& pyramid,
-                                                 const SliceSetup& slices, int pw, int ph, const RenderSettings& s) {
-        std::vector<SurfaceHit> hits(std::size_t(pw) * ph);
-        std::vector<double> tHit(hits.size());
+    // Each volume's oracle field, from the process's cache when built before;
+    // a moving volume's padded by its reach (it is read advected).
+    std::vector<OracleField> oracleFields(const std::vector<SliceVolume>& volumes, RenderContext& ctx) const {
+        ScopedTimer timer(ctx.timings, "oracle");
+        std::vector<OracleField> fields;
+        for (const SliceVolume& v : volumes) {
+            const double spacing = params_.slice.spacing * v.lengthScale;
+            SharedOracleField shared = sharedOracleField(oracle_, {*v.volume, spacing, params_.lmax, params_.epsilon});
+            ctx.counters.add(shared.reused ? kOracleReused : kOracleBuilt, 1);
+            fields.push_back(paddedByReach(shared.field, v.volume->motionReach, spacing));
+        }
+        return fields;
+    }
+
+    // The shutter times of the volume passes: one instant when nothing moves,
+    // else spp passes, stratified over the shutter with one jitter per seed
+    // (a pass shares its instant: the pyramid synthesises rays from
+    // neighbours, which must see the volume at the same time).
+    static std::vector<double> shutterTimes(const Scene& scene, const std::vector<SliceVolume>& volumes, const RenderSettings& s) {
+        if (!sceneMoves(volumes)) return {0.0};
+        const int n = std::max(1, s.spp);
+        const double jitter = toUnitFloat(hashCombine(mix64(s.seed), 0x5a77e4));
+        std::vector<double> times;
+        for (int k = 0; k < n; ++k) times.push_back(scene.shutter.frameTime(0, (k + jitter) / n));
+        return times;
+    }
+
+    // Adds one of `passes` equally weighted pass images to the sum.
+    static void accumulate(Image& sum, Image pass, std::size_t passes) {
+        if (passes == 1) {
+            sum = std::move(pass);
+            return;
+        }
+        if (sum.data().empty()) sum = Image(pass.width(), pass.height(), pass.channelNames());
+        const float w = 1.0f / float(passes);
+        for (std::size_t i = 0; i < sum.data().size(); ++i) sum.data()[i] += w * pass.data()[i];
+    }
+
+    struct Surfaces {
+        std::vector<SurfaceHit> hits;
+        std::vector<double> tHit;  // distance to each hit, reference voxels (the pyramid's slices)
+    };
+
+    // Each padded level-0 pixel's first surface.
+    static Surfaces traceSurfaces(const Scene& scene, const MeshAccel& accel, const Volume& vol, int pw, int ph, const RenderSettings& s) {
+        Surfaces out{std::vector<SurfaceHit>(std::size_t(pw) * ph), std::vector<double>(std::size_t(pw) * ph)};
         tbb::parallel_for(0, ph, [&](int y) {
             for (int x = 0; x < pw; ++x) {
                 const Ray ray = scene.camera.generate(x + 0.5, y + 0.5, s.width, s.height);
                 const std::size_t i = std::size_t(y) * pw + x;
-                hits[i] = firstSurface(accel, ray);
-                tHit[i] = surfaceIndexDistance(vol, ray, hits[i]);
+                out.hits[i] = firstSurface(accel, ray);
+                out.tHit[i] = surfaceIndexDistance(vol, ray, out.hits[i]);
             }
         });
-        pyramid.setSurfaces(std::move(tHit), slices);
-        return hits;
+        return out;
     }
 
     static void shadeSurfaces(const Scene& scene, const MeshAccel& accel, const std::vector<SurfaceHit>& hits, int pw,
@@ -214,6 +262,8 @@ const TechniqueRegistrar registrar{{
     /*bytesPerPixel=*/140,  // pyramid levels of rays, values and distances (135 measured)
     /*reference=*/{"volume.raymarch", {"step=0.1"}, 256},
     /*knobs=*/{{"lmax", {"3", "2", "1", "0"}}, {"spacing", {"2", "1", "0.5"}}, {"spp", {"1", "4", "16", "64"}}},
+    /*scatters=*/false,
+    /*velocityBlur=*/true,
 }};
 
 }  // namespace

@@ -89,7 +89,8 @@ SliceWorker::SliceWorker(SliceContext& sc) : sc_(sc), data_(sc.volumes), segment
         oracleAccessors_.push_back(f.distance ? f.distance->getConstAccessor() : sc.volumes[k].volume->grid->getConstAccessor());
     }
     emits_ = sceneEmits(sc.volumes);
-    one_ = sc.volumes.size() == 1 && sc.volumes[0].reference && sc.volumes[0].lengthScale == 1 && !emits_;
+    data_.setTime(sc.time);
+    one_ = sc.volumes.size() == 1 && sc.volumes[0].reference && sc.volumes[0].lengthScale == 1 && !emits_ && !sc.volumes[0].volume->motion;
     sampler0_ = &data_.sampler(0);
     oracle0_ = &oracleAccessors_[0];
     background0_ = data_.background(0);

@@ -93,6 +93,7 @@ struct SliceContext {
     SliceTables& tables;
     int lmax;
     Counters& counters;
+    double time = 0;  // the pass's shutter time, frames from the frame (moving volumes only)
 };
 
 class SliceWorker {
@@ -138,7 +139,8 @@ private:
     std::deque<openvdb::FloatGrid::ConstAccessor> oracleAccessors_;
     std::vector<PreintSample> segments_;  // one per volume
     // One volume in its own index space (no placement between the reference
-    // and it) that emits nothing; emitting scenes take the general path.
+    // and it) that emits nothing and stays still; emitting and moving scenes
+    // take the general path.
     bool one_ = false;
     bool emits_ = false;  // some volume emits
     const ScalarSampler* sampler0_ = nullptr;

@@ -34,6 +34,13 @@
 // preintegration.hpp), built only when a volume emits. The cut segment in
 // front of a surface integrates them exactly.
 //
+// Velocity motion blur: a moving volume (Volume::motion) is read, at every
+// slice of a camera sample's ray, where its velocity advects the point from
+// at the sample's shutter time (core/volume/volume_motion.hpp), so each
+// sample sees the volume at one instant and spp samples cover the shutter
+// as the camera-blurring techniques' do; segments between slices come from
+// the same tables. The camera itself renders one instant.
+//
 // Several volumes (core/volume/slice_volumes.hpp): slices are measured in
 // the first volume's index space; every volume is sampled at each slice and
 // overlapping segments combine as media whose extinctions add (combineMedia).
@@ -111,7 +118,8 @@ public:
         if (!offsetPattern_.empty()) offsets = makePatternSet(offsetPattern_, s.spp, hashCombine(s.seed, 0x0ff5));
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // built before the pixel loop
         if (accel) scene.emitters();
-        const Frame frame{scene, volumes, slices, oneSlice, offsets, accel, accel ? rayEpsilon(scene) : 0.0f, sceneEmits(volumes), s};
+        const Frame frame{scene, volumes, slices, oneSlice, offsets, accel, accel ? rayEpsilon(scene) : 0.0f, sceneEmits(volumes),
+                          sceneMoves(volumes), s};
         const ImagePlane plane(plane_, s);
         Image image = plane.render(ctx, "volume.preint", [&] { return Shader(frame); });
         ctx.counters.add(kSlices, slices.imax + 1);
@@ -130,6 +138,7 @@ private:
         const MeshAccel* accel;
         float eps;
         bool emits;  // some volume emits: its samples also read emission
+        bool moves;  // some volume moves: each camera sample reads it at its shutter time
         const RenderSettings& s;
     };
 
@@ -148,6 +157,7 @@ private:
             const Ray worldRay = f.scene.camera.generate(c.x, c.y, f.s.width, f.s.height);
             const double shift = f.offsets ? f.offsets->sample(c.px, c.py, int(c.index % std::uint32_t(f.s.spp))).t : 0.0;
             ++rays;
+            if (f.moves) samplers.setTime(f.scene.shutter.frameTime(0, c.time));
             const SurfaceHit hit = f.accel ? firstSurface(*f.accel, worldRay) : SurfaceHit{};
             const SegmentCompositor acc = march(worldRay, reference, shift, surfaceIndexDistance(reference, worldRay, hit));
             float px[4] = {acc.r, acc.g, acc.b, acc.a};
@@ -238,6 +248,8 @@ const TechniqueRegistrar registrar{{
     /*bytesPerPixel=*/32,
     /*reference=*/{"volume.raymarch", {"step=0.1"}, 256},
     /*knobs=*/{{"spacing", {"4", "2", "1", "0.5"}}, {"table_res", {"64", "256"}}, {"spp", {"1", "4", "16", "64"}}},
+    /*scatters=*/false,
+    /*velocityBlur=*/true,
 }};
 
 }  // namespace
