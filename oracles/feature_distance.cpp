@@ -41,21 +41,28 @@ OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext
     distance->setTransform(features.transform().copy());
     distance->setTree(std::make_shared<FloatTree>(features.tree(), cap, minimum, TopologyCopy()));
     distance->tree().voxelizeActiveTiles();
-    // Grow the active region one voxel (26-neighbourhood) at a time. Voxels
-    // a dilation activates still hold the background (the cap), which is how
-    // each new ring is found and given its distance, all leaves in parallel.
-    // Rings past the volume's extent hold no lookup (those read the cap), so
-    // the growth stops there: a cap of thousands of voxels over a small grid
-    // would otherwise dilate it for minutes into gigabytes.
+    // Ring k (Chebyshev distance exactly k) is the last ring grown by one
+    // voxel (26-neighbourhood) less every voxel already given a distance, so
+    // each step dilates a one-voxel shell, not the whole field. Rings past
+    // the volume's extent hold no lookup (those read the cap), so the growth
+    // stops there: a cap of thousands of voxels over a small grid would
+    // otherwise dilate it for minutes into gigabytes.
+    MaskTree ring(features.tree());
+    ring.voxelizeActiveTiles();
     const openvdb::Coord extent = ctx.volume.indexBox().dim();
     const int rings = std::max({extent.x(), extent.y(), extent.z()}) + 2;
     for (int k = 1; k <= rings && ringDistance(k - 1, ctx, cap) < cap; ++k) {
-        tools::dilateActiveValues(distance->tree(), 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
-        const float ring = ringDistance(k, ctx, cap);
-        tree::LeafManager<FloatTree> leaves(distance->tree());
-        leaves.foreach([&](FloatTree::LeafNodeType& leaf, std::size_t) {
-            for (auto it = leaf.beginValueOn(); it; ++it)
-                if (*it == cap) it.setValue(ring);
+        tools::dilateActiveValues(ring, 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
+        ring.topologyDifference(distance->tree());
+        tools::pruneInactive(ring);
+        ring.voxelizeActiveTiles();
+        if (ring.empty()) break;
+        distance->tree().topologyUnion(ring);  // new voxels hold the background (the cap) until set below
+        const float value = ringDistance(k, ctx, cap);
+        tree::LeafManager<MaskTree> leaves(ring);
+        leaves.foreach([&](MaskTree::LeafNodeType& leaf, std::size_t) {
+            FloatTree::LeafNodeType* target = distance->tree().probeLeaf(leaf.origin());
+            for (auto it = leaf.cbeginValueOn(); it; ++it) target->setValueOnly(it.pos(), value);
         });
     }
     OracleField field;

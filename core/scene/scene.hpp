@@ -2,6 +2,7 @@
 // The scene: camera, volumes, lights, and the render settings a scene file
 // may carry (technique, parameters, resolution), which the command line can
 // override. Only what the scene uses is built.
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -62,7 +63,23 @@ struct Scene {
     const Emitters& emitters() const;
 
 private:
+    // The built cache, read without a lock on every call after the first:
+    // rays ask for the BVH and the emitters millions of times, and a mutex
+    // and a shared_ptr copy per call serialised them. A copy of the scene
+    // starts empty and finds the shared cache on its first call.
+    struct BuiltMeshCache {
+        std::atomic<const MeshCache*> cache{nullptr};
+        BuiltMeshCache() = default;
+        BuiltMeshCache(const BuiltMeshCache&) {}
+        BuiltMeshCache& operator=(const BuiltMeshCache&) {
+            cache.store(nullptr);
+            return *this;
+        }
+    };
+    const MeshCache& meshCache() const;
+
     mutable std::shared_ptr<MeshCache> meshCache_;
+    mutable BuiltMeshCache built_;
 };
 
 // For techniques that do not render volume emission: an Error naming the

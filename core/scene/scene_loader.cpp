@@ -593,7 +593,7 @@ void requireNoEmission(const Scene& scene, const std::string& technique) {
     for (const Volume& v : scene.volumes)
         if (v.emission)
             throw Error(technique + " does not render volume emission; volume '" + v.source + "' emits (" + v.grids +
-                        "): render it with volume.raymarch, volume.singlescatter or mesh.pathtrace");
+                        "): render it with volume.raymarch, volume.singlescatter, volume.preint, volume.adaptive3d or mesh.pathtrace");
 }
 
 Camera Scene::cameraAt(double u) const {

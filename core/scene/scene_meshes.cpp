@@ -22,6 +22,7 @@ void Scene::addMesh(TriangleMesh mesh) {
     for (std::uint32_t& id : mesh.material) id += offset;
     meshes.push_back(std::move(mesh));
     meshCache_.reset();
+    built_.cache.store(nullptr);
 }
 
 namespace {
@@ -44,7 +45,14 @@ MeshCache& buildCache(const Scene& scene, std::shared_ptr<MeshCache>& slot) {
 
 }  // namespace
 
-const MeshAccel& Scene::accel() const { return *buildCache(*this, meshCache_).accel; }
-const Emitters& Scene::emitters() const { return *buildCache(*this, meshCache_).emitters; }
+const MeshCache& Scene::meshCache() const {
+    if (const MeshCache* built = built_.cache.load(std::memory_order_acquire)) return *built;
+    const MeshCache& cache = buildCache(*this, meshCache_);
+    built_.cache.store(&cache, std::memory_order_release);
+    return cache;
+}
+
+const MeshAccel& Scene::accel() const { return *meshCache().accel; }
+const Emitters& Scene::emitters() const { return *meshCache().emitters; }
 
 }  // namespace weft
