@@ -1,7 +1,5 @@
 #include "oracles/feature_distance.hpp"
 
-#include "oracles/chebyshev_rings.hpp"
-
 #include <openvdb/tools/Morphology.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
@@ -34,84 +32,39 @@ double sliceEmission(const openvdb::Vec3s& e, double spacing) {
     return double(std::max({e[0], e[1], e[2]})) * spacing;
 }
 
-// How many rings a field grows: up to the cap, and no further than the
-// volume's extent (rings past it hold no lookup, which reads the cap; a cap
-// of thousands of voxels over a small grid would otherwise grow it for
-// minutes into gigabytes).
-int ringsToGrow(const OracleContext& ctx, float cap) {
-    const openvdb::Coord extent = ctx.volume.indexBox().dim();
-    const int limit = std::max({extent.x(), extent.y(), extent.z()}) + 2;
-    int rings = 0;
-    while (rings < limit && ringDistance(rings, ctx, cap) < cap) ++rings;
-    return rings;
-}
-
-// The field from dense ring distances: a leaf wherever a voxel is within
-// the rings, its voxels set in parallel.
-void fillFromRings(openvdb::FloatTree& tree, const RingDistances& d, int rings, const OracleContext& ctx, float cap) {
-    using namespace openvdb;
-    const CoordBBox leafBox(d.box.min() & ~7, d.box.max() & ~7);
-    std::vector<Coord> origins;
-    for (int z = leafBox.min().z(); z <= leafBox.max().z(); z += 8)
-        for (int y = leafBox.min().y(); y <= leafBox.max().y(); y += 8)
-            for (int x = leafBox.min().x(); x <= leafBox.max().x(); x += 8) origins.emplace_back(x, y, z);
-    std::vector<std::uint8_t> used(origins.size(), 0);
-    auto leafVoxels = [&](std::size_t i) {
-        CoordBBox b(origins[i], origins[i] + Coord(7));
-        b.intersect(d.box);
-        return b;
-    };
-    tbb::parallel_for(std::size_t(0), origins.size(), [&](std::size_t i) {
-        for (auto c = leafVoxels(i).begin(); c; ++c)
-            if (d.at(*c) <= rings) {
-                used[i] = 1;
-                return;
-            }
-    });
-    for (std::size_t i = 0; i < origins.size(); ++i)
-        if (used[i]) tree.touchLeaf(origins[i]);
-    tbb::parallel_for(std::size_t(0), origins.size(), [&](std::size_t i) {
-        if (!used[i]) return;
-        FloatTree::LeafNodeType* leaf = tree.probeLeaf(origins[i]);
-        for (auto c = leafVoxels(i).begin(); c; ++c)
-            if (const int r = d.at(*c); r <= rings) leaf->setValueOn(*c, ringDistance(r, ctx, cap));
-    });
-}
-
-// The same field grown ring by ring in the sparse tree: ring k (Chebyshev
-// distance exactly k) is the last ring grown by one voxel (26-neighbourhood)
-// less every voxel already given a distance.
-void growRingsSparse(openvdb::FloatTree& tree, const openvdb::MaskTree& features, int rings, const OracleContext& ctx, float cap) {
-    using namespace openvdb;
-    MaskTree ring(features);
-    for (int k = 1; k <= rings; ++k) {
-        tools::dilateActiveValues(ring, 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
-        ring.topologyDifference(tree);
-        tools::pruneInactive(ring);
-        ring.voxelizeActiveTiles();
-        if (ring.empty()) break;
-        tree.topologyUnion(ring);  // new voxels hold the background (the cap) until set below
-        const float value = ringDistance(k, ctx, cap);
-        tree::LeafManager<MaskTree> leaves(ring);
-        leaves.foreach([&](MaskTree::LeafNodeType& leaf, std::size_t) {
-            FloatTree::LeafNodeType* target = tree.probeLeaf(leaf.origin());
-            for (auto it = leaf.cbeginValueOn(); it; ++it) target->setValueOnly(it.pos(), value);
-        });
-    }
-}
-
-OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext& ctx, std::size_t maxDenseVoxels) {
+// The distance field of a mask (distanceToFeatures without emission).
+OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext& ctx) {
     using namespace openvdb;
     const float minimum = float(ctx.sliceSpacing);
     const float cap = std::max(minimum, float(ctx.sliceSpacing * double(1 << ctx.lmax)));
     FloatGrid::Ptr distance = FloatGrid::create(cap);
     distance->setTransform(features.transform().copy());
-    MaskTree voxels(features.tree());
-    voxels.voxelizeActiveTiles();
-    distance->setTree(std::make_shared<FloatTree>(voxels, cap, minimum, TopologyCopy()));
-    const int rings = ringsToGrow(ctx, cap);
-    if (const auto dense = chebyshevRings(voxels, rings, maxDenseVoxels)) fillFromRings(distance->tree(), *dense, rings, ctx, cap);
-    else growRingsSparse(distance->tree(), voxels, rings, ctx, cap);
+    distance->setTree(std::make_shared<FloatTree>(features.tree(), cap, minimum, TopologyCopy()));
+    distance->tree().voxelizeActiveTiles();
+    // Ring k (Chebyshev distance exactly k) is the last ring grown by one
+    // voxel (26-neighbourhood) less every voxel already given a distance, so
+    // each step dilates a one-voxel shell, not the whole field. Rings past
+    // the volume's extent hold no lookup (those read the cap), so the growth
+    // stops there: a cap of thousands of voxels over a small grid would
+    // otherwise dilate it for minutes into gigabytes.
+    MaskTree ring(features.tree());
+    ring.voxelizeActiveTiles();
+    const openvdb::Coord extent = ctx.volume.indexBox().dim();
+    const int rings = std::max({extent.x(), extent.y(), extent.z()}) + 2;
+    for (int k = 1; k <= rings && ringDistance(k - 1, ctx, cap) < cap; ++k) {
+        tools::dilateActiveValues(ring, 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
+        ring.topologyDifference(distance->tree());
+        tools::pruneInactive(ring);
+        ring.voxelizeActiveTiles();
+        if (ring.empty()) break;
+        distance->tree().topologyUnion(ring);  // new voxels hold the background (the cap) until set below
+        const float value = ringDistance(k, ctx, cap);
+        tree::LeafManager<MaskTree> leaves(ring);
+        leaves.foreach([&](MaskTree::LeafNodeType& leaf, std::size_t) {
+            FloatTree::LeafNodeType* target = distance->tree().probeLeaf(leaf.origin());
+            for (auto it = leaf.cbeginValueOn(); it; ++it) target->setValueOnly(it.pos(), value);
+        });
+    }
     OracleField field;
     field.constant = cap;
     field.distance = distance;
@@ -146,10 +99,10 @@ openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx) {
 }
 
 OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx) {
-    if (!ctx.volume.emission) return distanceField(features, ctx, kMaxDenseRingVoxels);
+    if (!ctx.volume.emission) return distanceField(features, ctx);
     openvdb::MaskGrid::Ptr merged = features.deepCopy();
     merged->tree().topologyUnion(emissionFeatures(ctx)->tree());
-    return distanceField(*merged, ctx, kMaxDenseRingVoxels);
+    return distanceField(*merged, ctx);
 }
 
 std::vector<BrickRange> brickRanges(const openvdb::FloatGrid& grid) {

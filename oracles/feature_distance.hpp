@@ -23,13 +23,6 @@ double sliceOpacity(const Volume& volume, double spacing, float value);
 // dense where the glow changes, whatever it reads from the density.
 OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx);
 
-// The field of a mask without emission features. The rings are grown over
-// a dense box of bits (oracles/chebyshev_rings.hpp) when the features' box,
-// padded by the rings, holds at most maxDenseVoxels voxels (one byte each),
-// else ring by ring in the sparse tree: the same field either way.
-OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext& ctx, std::size_t maxDenseVoxels);
-constexpr std::size_t kMaxDenseRingVoxels = std::size_t(1) << 27;
-
 // Voxels where one slice's emitted radiance (the largest channel of the
 // emission grid x the slice spacing) has a gradient above ctx.epsilon per
 // voxel, the emission's counterpart of gradient_alpha's opacity gradient.

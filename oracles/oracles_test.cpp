@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 
 #include "core/base/rng.hpp"
 #include "oracles/feature_distance.hpp"
@@ -97,28 +96,6 @@ TEST(FeatureDistance, StopsGrowingAtTheVolumesExtent) {
     const OracleField f = distanceToFeatures(features, {v, 64.0, 6, 0.01});
     EXPECT_FLOAT_EQ(distanceAt(f, Coord(8, 8, 8)), 64.0f);
     EXPECT_LT(f.distance->activeVoxelCount(), openvdb::Index64(64 * 64 * 64));
-}
-
-// The rings grown over a dense box of bits and ring by ring in the sparse
-// tree give the same field, voxel for voxel, active or not, for scattered
-// features, several caps and spacings, and a ring limit set by the extent.
-TEST(FeatureDistance, DenseAndSparseRingsAgree) {
-    Rng rng(11);
-    for (const auto& [lo, hi, spacing, lmax] : {std::tuple{-10, 50, 1.0, 3}, std::tuple{-10, 50, 0.5, 4}, std::tuple{0, 5, 2.0, 6}}) {
-        const Volume v = boxVolume(lo, hi);
-        openvdb::MaskGrid features(false);
-        for (int i = 0; i < 20; ++i) features.tree().setValueOn(Coord(lo + int(rng.next() % (hi - lo + 1)), lo + int(rng.next() % (hi - lo + 1)), lo + int(rng.next() % (hi - lo + 1))));
-        features.tree().fill(openvdb::CoordBBox(Coord(lo), Coord(lo + 3)), true, true);  // a tile-sized block as well
-        const OracleContext ctx{v, spacing, lmax, 0.01};
-        const OracleField dense = distanceField(features, ctx, kMaxDenseRingVoxels);
-        const OracleField sparse = distanceField(features, ctx, 0);
-        EXPECT_EQ(dense.constant, sparse.constant);
-        EXPECT_EQ(dense.distance->activeVoxelCount(), sparse.distance->activeVoxelCount()) << spacing << " " << lmax;
-        for (auto c = openvdb::CoordBBox(Coord(lo - 70), Coord(hi + 70)).begin(); c; ++c) {
-            ASSERT_EQ(dense.distance->tree().getValue(*c), sparse.distance->tree().getValue(*c)) << *c << " " << spacing << " " << lmax;
-            ASSERT_EQ(dense.distance->tree().isValueOn(*c), sparse.distance->tree().isValueOn(*c)) << *c;
-        }
-    }
 }
 
 // A moving volume's field: every distance (stored voxels, tiles and the
