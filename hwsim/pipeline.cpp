@@ -86,6 +86,10 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
                !p.deferWrites && !p.countEarly && !t.writesDepth && (!p.depth || p.zsEarly);
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH, p.wholeBlock = pr.lockStepWholeBlock;
     p.colorWrites = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+    const bool everyChannel = state.colorMask[0] && state.colorMask[1] && state.colorMask[2] && state.colorMask[3];
+    const BlendState& blend = state.blend;
+    p.colorReplace = everyChannel && !blend.enabled;
+    p.colorAdd = everyChannel && blend.enabled && blend.src == BlendFactor::One && blend.dst == BlendFactor::One;
     p.stampW = pr.statsStampW, p.stampH = pr.statsStampH, p.statsAtScan = pr.statsCountedAtScan;
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});
     p.tileH = std::max({16, pr.coarseTile, pr.branchBlockH});

@@ -74,6 +74,7 @@ struct DrawPlan {
     bool bounds = false, boundsEarly = false;
     bool stencil = false, depth = false, zsEarly = false, zsLate = false, deferWrites = false;
     bool depthWrites = false, stencilWrites = false, writesDepth = false, colorWrites = false;
+    bool colorReplace = false, colorAdd = false;  // every channel written: unblended, or blended ONE + ONE (the common cases)
     bool coarse = false, coarseDepth = false, coarseStencil = false, coarseBounds = false;
     bool quad = false;
     bool countEarly = false;
@@ -168,7 +169,7 @@ private:
     }
     // Whether every covered fragment of the tile fails a coarse test; which.
     bool coarseReject(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int tx1, int ty1, Stage& stage) const;
-    void writeColor(std::size_t idx, const std::array<float, 4>& src) const;
+    void writeColor(std::size_t idx, const std::array<float, 4>& src, const DrawPlan& p) const;
 
     Framebuffer& fb_;
     const Profile& profile_;

@@ -98,7 +98,7 @@ unsigned Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const 
         c.cost += o.cost;
         if (o.discard) { ++c.discarded; continue; }
         ++c.samplesPassed;
-        if (p.colorWrites) writeColor(idx, o.color);
+        if (p.colorWrites) writeColor(idx, o.color, p);
         if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, z, false}, o);
         c.pixelsWritten += p.colorWrites || p.depthWrites;
     }
@@ -169,7 +169,7 @@ unsigned Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const Dr
             applyPending(idx, pending[lane]);
         }
         if (!p.countEarly) ++c.samplesPassed;
-        if (p.colorWrites) writeColor(idx, o.color);
+        if (p.colorWrites) writeColor(idx, o.color, p);
         if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false}, o);
         c.pixelsWritten += p.colorWrites || p.depthWrites;
     }
@@ -222,8 +222,16 @@ inline float factor(BlendFactor f, const std::array<float, 4>& src, const std::a
 
 }  // namespace detail
 
-inline void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src) const {
+inline void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src, const DrawPlan& p) const {
     std::array<float, 4>& dst = fb_.color[idx];
+    if (p.colorReplace) {
+        dst = src;
+        return;
+    }
+    if (p.colorAdd) {
+        for (int ch = 0; ch < 4; ++ch) dst[ch] += src[ch];
+        return;
+    }
     const BlendState& b = state.blend;
     const float fs = b.enabled ? detail::factor(b.src, src, dst) : 1, fd = b.enabled ? detail::factor(b.dst, src, dst) : 0;
     for (int ch = 0; ch < 4; ++ch)
