@@ -85,6 +85,11 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.simple = !p.quad && pr.branchBlockW * pr.branchBlockH == 1 && !p.stencil && !p.bounds && !p.stippleLate && !p.stippleStart &&
                !p.deferWrites && !p.countEarly && !t.writesDepth && (!p.depth || p.zsEarly);
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH, p.wholeBlock = pr.lockStepWholeBlock;
+    p.colorWrites = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
+    const bool everyChannel = state.colorMask[0] && state.colorMask[1] && state.colorMask[2] && state.colorMask[3];
+    const BlendState& blend = state.blend;
+    p.colorReplace = everyChannel && !blend.enabled;
+    p.colorAdd = everyChannel && blend.enabled && blend.src == BlendFactor::One && blend.dst == BlendFactor::One;
     p.stampW = pr.statsStampW, p.stampH = pr.statsStampH, p.statsAtScan = pr.statsCountedAtScan;
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});
     p.tileH = std::max({16, pr.coarseTile, pr.branchBlockH});
@@ -110,6 +115,27 @@ bool rangeFails(CompareFunc f, float zlo, float zhi, float lo, float hi) {
 }
 
 }  // namespace
+
+int Pipeline::scanRows(const PrimitiveSetup& s, const DrawPlan& p, bool full, int tx0, int ty0, int x0, int y0, int x1, int y1,
+                       int rowCount, std::uint64_t* live, std::uint64_t* scanned, StageCounts& c) const {
+    const ScissorState& sc = state.scissor;
+    const auto column = [tx0](long x) { return int(std::clamp(x - tx0, 0L, 64L)); };
+    const std::uint64_t scissorColumns = p.scissor ? bitRange(column(sc.x), column(long(sc.x) + sc.width)) : ~std::uint64_t(0);
+    const bool stippleAtScan = p.stipple && !p.stippleLate && !p.stippleStart;
+    int survivors = 0;
+    for (int row = 0; row < rowCount; ++row) {
+        const int y = ty0 + row;
+        std::uint64_t m = y >= y0 && y < y1 ? coverageBits(s, full, tx0, x0, x1, y) : 0;
+        c.generated += bitCount(m);
+        const std::uint64_t inScissor = !p.scissor || (y >= sc.y && long(y) < long(sc.y) + sc.height) ? scissorColumns : 0;
+        scanned[row] = m & inScissor;
+        if (m && stippleAtScan) m = keep(m, stippleBits(state.stipple.rows[y & 31], tx0), c.rejected[int(Stage::Stipple)]);
+        if (m && p.scissor) m = keep(m, inScissor, c.rejected[int(Stage::Scissor)]);
+        live[row] = m;
+        survivors += bitCount(m);
+    }
+    return survivors;
+}
 
 // Coarse tests see per-tile summaries (min/max depth, stencil) as hierarchical
 // Z/stencil hardware keeps them; here they are computed exactly on demand.

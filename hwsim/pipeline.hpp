@@ -25,6 +25,7 @@
 #include "hwsim/gl_state.hpp"
 #include "hwsim/profile.hpp"
 #include "hwsim/raster.hpp"
+#include "hwsim/tile_masks.hpp"
 
 namespace weft::hwsim {
 
@@ -72,7 +73,8 @@ struct DrawPlan {
     bool stipple = false, stippleStart = false, stippleLate = false, stippleMirrored = false, scissor = false;
     bool bounds = false, boundsEarly = false;
     bool stencil = false, depth = false, zsEarly = false, zsLate = false, deferWrites = false;
-    bool depthWrites = false, stencilWrites = false, writesDepth = false;
+    bool depthWrites = false, stencilWrites = false, writesDepth = false, colorWrites = false;
+    bool colorReplace = false, colorAdd = false;  // every channel written: unblended, or blended ONE + ONE (the common cases)
     bool coarse = false, coarseDepth = false, coarseStencil = false, coarseBounds = false;
     bool quad = false;
     bool countEarly = false;
@@ -130,9 +132,11 @@ private:
     void draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits);
     template <class Program>
     void scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, StageCounts& c) const;
-    // FRAGMENT_SHADER_INVOCATIONS of one tile from a lane mask per quad (those that
-    // ran the program, or those scanned).
-    static std::int64_t statsInvocations(const DrawPlan& p, const std::uint8_t* lanesSet, int qw, int tx0, int ty0, int x1, int y1);
+    // Coverage, stipple and scissor of the tile's pixel rows ty0 .. ty0 + rowCount - 1
+    // (counted); `live` receives the survivors, `scanned` the covered pixels inside
+    // the scissor. Returns the survivors' number.
+    int scanRows(const PrimitiveSetup& s, const DrawPlan& p, bool full, int tx0, int ty0, int x0, int y0, int x1, int y1,
+                 int rowCount, std::uint64_t* live, std::uint64_t* scanned, StageCounts& c) const;
     void cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int y1, int x1,
                          std::uint8_t* masks, StageCounts& c) const;
     // Both return the lanes whose program ran for the fragment (not as a helper).
@@ -141,7 +145,7 @@ private:
                          StageCounts& c) const;
     template <class Program>
     unsigned shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
-                   StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const;
+                   StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes) const;
 
     // Stencil then depth at one pixel; Stage::Count when both pass. Writes
     // the updates unless `pending` is given, which then receives them.
@@ -158,29 +162,14 @@ private:
     }
     bool stippleKeeps(int x, int y) const { return (state.stipple.rows[y & 31] >> (x & 31)) & 1u; }
     bool stippleKeeps(int x, int y, bool mirrored) const { return stippleKeeps(x, mirrored ? fb_.height - 1 - y : y); }
-    // Lane bits of quad (qx, qy) (qx even): lane = dx + 2 dy.
-    unsigned stippleQuad(int qx, int qy) const {
-        const unsigned bottom = (state.stipple.rows[qy & 31] >> (qx & 31)) & 3u;
-        const unsigned top = (state.stipple.rows[(qy + 1) & 31] >> (qx & 31)) & 3u;
-        return bottom | top << 2;
-    }
-    static unsigned inBoxMask(int qx, int qy, int x0, int y0, int x1, int y1) {
-        const unsigned cols = unsigned(qx >= x0 && qx < x1) | unsigned(qx + 1 >= x0 && qx + 1 < x1) << 1;
-        const unsigned rows = unsigned(qy >= y0 && qy < y1) | unsigned(qy + 1 >= y0 && qy + 1 < y1) << 1;
-        return (rows & 1u ? cols : 0u) | (rows & 2u ? cols << 2 : 0u);
-    }
-    // The kept lanes of mask; adds the dropped ones to a rejection count.
-    static unsigned keep(unsigned mask, unsigned kept, std::int64_t& rejected) {
-        rejected += lanes(mask & ~kept);
+    // The kept bits of mask; adds the dropped ones to a rejection count.
+    static std::uint64_t keep(std::uint64_t mask, std::uint64_t kept, std::int64_t& rejected) {
+        rejected += bitCount(mask & ~kept);
         return mask & kept;
-    }
-    bool scissorKeeps(int x, int y) const {
-        const ScissorState& s = state.scissor;
-        return x >= s.x && x < s.x + s.width && y >= s.y && y < s.y + s.height;
     }
     // Whether every covered fragment of the tile fails a coarse test; which.
     bool coarseReject(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int tx1, int ty1, Stage& stage) const;
-    void writeColor(std::size_t idx, const std::array<float, 4>& src) const;
+    void writeColor(std::size_t idx, const std::array<float, 4>& src, const DrawPlan& p) const;
 
     Framebuffer& fb_;
     const Profile& profile_;

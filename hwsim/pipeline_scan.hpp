@@ -24,47 +24,54 @@ void Pipeline::draw(const PrimitiveSetup& s, Program& program, const ProgramTrai
     perThread.combine_each([&](const StageCounts& c) { counts_.add(c); });
 }
 
-// One tile: coverage and the rasterizer's tests for every quad, then the
-// coarse test of the whole tile, then each live quad through the rest.
+// One tile: coverage and the rasterizer's tests for every pixel row, then
+// the coarse test of the whole tile, then each live quad through the rest.
 template <class Program>
 void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0,
                         StageCounts& c) const {
     const int x0 = std::max(tx0, s.x0), y0 = std::max(ty0, s.y0);
     const int x1 = std::min(tx0 + p.tileW, s.x1), y1 = std::min(ty0 + p.tileH, s.y1);
-    const int qw = p.tileW / 2;
-    std::array<std::uint8_t, 32 * 32> masks, scanned;  // tiles are at most 64 x 64; scanned: covered and inside the scissor
     const TileCoverage coverage = s.spans ? TileCoverage::Partial : classifyTile(s.edges, tx0, ty0, tx0 + p.tileW, ty0 + p.tileH);
     if (coverage == TileCoverage::None) return;
-    int live = 0;
-    for (int qy = ty0; qy < y1; qy += 2)
-        for (int qx = tx0; qx < x1; qx += 2) {
-            unsigned m = inBoxMask(qx, qy, x0, y0, x1, y1);
-            if (coverage == TileCoverage::Partial)
-                for (int lane = 0; lane < 4; ++lane)
-                    if ((m >> lane & 1u) && !s.covers(qx + (lane & 1), qy + (lane >> 1))) m &= ~(1u << lane);
-            c.generated += lanes(m);
-            const unsigned inScissor = p.scissor ? inBoxMask(qx, qy, state.scissor.x, state.scissor.y, state.scissor.x + state.scissor.width,
-                                                             state.scissor.y + state.scissor.height) : 0xFu;
-            if (p.statsAtScan) scanned[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m & inScissor);
-            if (m && p.stipple && !p.stippleLate && !p.stippleStart) m = keep(m, stippleQuad(qx, qy), c.rejected[int(Stage::Stipple)]);
-            if (m && p.scissor) m = keep(m, inScissor, c.rejected[int(Stage::Scissor)]);
-            masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2] = std::uint8_t(m);
-            live += lanes(m);
-        }
-    if (p.statsAtScan) c.fragmentShaderInvocations += statsInvocations(p, scanned.data(), qw, tx0, ty0, x1, y1);
-    if (live == 0) return;
+    const int rowCount = (y1 - ty0 + 1) & ~1;  // whole quads
+    std::array<std::uint64_t, 64> live, scanned;  // per pixel row; scanned: covered and inside the scissor
+    const int liveCount = scanRows(s, p, coverage == TileCoverage::Full, tx0, ty0, x0, y0, x1, y1, rowCount, live.data(), scanned.data(), c);
+    if (p.statsAtScan) c.fragmentShaderInvocations += stampsHit(scanned.data(), rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
+    if (liveCount == 0) return;
+    const int qw = p.tileW / 2, quadRows = rowCount / 2, quadCols = (x1 - tx0 + 1) / 2;
+    std::array<std::uint8_t, 32 * 32> masks;  // tiles are at most 64 x 64
+    for (int qyi = 0; qyi < quadRows; ++qyi)
+        for (int qxi = 0; qxi < quadCols; ++qxi)
+            masks[qyi * qw + qxi] = std::uint8_t((live[2 * qyi] >> 2 * qxi & 3u) | (live[2 * qyi + 1] >> 2 * qxi & 3u) << 2);
     if (p.coarse) cullCoarseTiles(s, p, tx0, ty0, y1, x1, masks.data(), c);
     const int blocks = (p.tileW / p.blockW) * (p.tileH / p.blockH);
-    std::array<std::int64_t, 32 * 32> blockMax, blockLanes;  // blocks are at least 2x2 when used
+    std::array<std::int64_t, 32 * 32> blockMax, blockLanes;  // blocks are at least 2x2 when used: a quad lies in one
     const bool lockStep = p.blockW * p.blockH > 1;
     if (lockStep) std::fill_n(blockMax.begin(), blocks, 0), std::fill_n(blockLanes.begin(), blocks, 0);
-    for (int qy = ty0; qy < y1; qy += 2)
-        for (int qx = tx0; qx < x1; qx += 2) {
-            std::uint8_t& m = masks[((qy - ty0) / 2) * qw + (qx - tx0) / 2];  // becomes the lanes that ran
-            if (m && p.simple) m = std::uint8_t(shadePixels(s, program, p, qx, qy, m, c));
-            else if (m) m = std::uint8_t(shadeQuad(s, program, p, qx, qy, m, c, lockStep ? blockMax.data() : nullptr, blockLanes.data(), tx0, ty0));
+    const int blockShiftW = std::countr_zero(unsigned(p.blockW)), blockShiftH = std::countr_zero(unsigned(p.blockH));
+    for (int qyi = 0; qyi < quadRows; ++qyi) {
+        std::uint64_t quads = live[2 * qyi] | live[2 * qyi + 1];
+        quads = (quads | quads >> 1) & 0x5555555555555555ull;  // bit 2 qxi: the quad had live lanes before coarse culling
+        for (; quads; quads &= quads - 1) {
+            const int qxi = std::countr_zero(quads) / 2, qx = tx0 + 2 * qxi, qy = ty0 + 2 * qyi;
+            std::uint8_t& m = masks[qyi * qw + qxi];  // becomes the lanes that ran
+            if (!m) continue;
+            if (p.simple) m = std::uint8_t(shadePixels(s, program, p, qx, qy, m, c));
+            else {
+                const int b = ((2 * qyi) >> blockShiftH) * (p.tileW >> blockShiftW) + ((2 * qxi) >> blockShiftW);
+                m = std::uint8_t(shadeQuad(s, program, p, qx, qy, m, c, lockStep ? &blockMax[b] : nullptr, &blockLanes[b]));
+            }
         }
-    if (!p.statsAtScan) c.fragmentShaderInvocations += statsInvocations(p, masks.data(), qw, tx0, ty0, x1, y1);
+    }
+    if (!p.statsAtScan) {
+        std::array<std::uint64_t, 64> ran{};
+        for (int qyi = 0; qyi < quadRows; ++qyi)
+            for (int qxi = 0; qxi < quadCols; ++qxi) {
+                const std::uint64_t m = masks[qyi * qw + qxi];
+                ran[2 * qyi] |= (m & 3u) << 2 * qxi, ran[2 * qyi + 1] |= (m >> 2 & 3u) << 2 * qxi;
+            }
+        c.fragmentShaderInvocations += stampsHit(ran.data(), rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
+    }
     if (lockStep)
         for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * (p.wholeBlock && blockLanes[b] ? p.blockW * p.blockH : blockLanes[b]);
 }
@@ -74,7 +81,6 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
 template <class Program>
 unsigned Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
                                StageCounts& c) const {
-    const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
     unsigned ran = 0;
     for (int lane = 0; lane < 4; ++lane) {
         if (!(mask >> lane & 1u)) continue;
@@ -92,9 +98,9 @@ unsigned Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const 
         c.cost += o.cost;
         if (o.discard) { ++c.discarded; continue; }
         ++c.samplesPassed;
-        if (colorWritten) writeColor(idx, o.color);
+        if (p.colorWrites) writeColor(idx, o.color, p);
         if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, z, false}, o);
-        c.pixelsWritten += colorWritten || p.depthWrites;
+        c.pixelsWritten += p.colorWrites || p.depthWrites;
     }
     return ran;
 }
@@ -102,7 +108,7 @@ unsigned Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const 
 // One 2x2 quad whose covered lanes passed the rasterizer's tests (mask).
 template <class Program>
 unsigned Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
-                             StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes, int tx0, int ty0) const {
+                             StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes) const {
     Pending pending[4];
     float z[4];
     bool noBoundsFailure = true;
@@ -145,11 +151,7 @@ unsigned Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const Dr
         const bool inside = x < fb_.width && y < fb_.height;
         if (inside) program(Fragment{x, y, helper ? s.depthAt(x, y) : z[lane], helper}, out[lane]);
         if (!blockMax) c.cost += out[lane].cost;
-        else {
-            const int b = ((y - ty0) / p.blockH) * (p.tileW / p.blockW) + (x - tx0) / p.blockW;
-            blockMax[b] = std::max<std::int64_t>(blockMax[b], inside ? out[lane].cost : 0);
-            ++blockLanes[b];
-        }
+        else *blockMax = std::max<std::int64_t>(*blockMax, inside ? out[lane].cost : 0), ++*blockLanes;
     }
     for (int lane = 0; lane < 4; ++lane) {
         if (!(mask >> lane & 1u)) continue;
@@ -167,34 +169,11 @@ unsigned Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const Dr
             applyPending(idx, pending[lane]);
         }
         if (!p.countEarly) ++c.samplesPassed;
-        const bool colorWritten = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
-        if (colorWritten) writeColor(idx, o.color);
+        if (p.colorWrites) writeColor(idx, o.color, p);
         if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false}, o);
-        c.pixelsWritten += colorWritten || p.depthWrites;
+        c.pixelsWritten += p.colorWrites || p.depthWrites;
     }
     return ran;
-}
-
-// A stamp is counted whole when any of its lanes is set; [1, 1] counts lanes.
-inline std::int64_t Pipeline::statsInvocations(const DrawPlan& p, const std::uint8_t* lanesSet, int qw, int tx0, int ty0, int x1, int y1) {
-    const bool perLane = p.stampW * p.stampH == 1;
-    std::int64_t count = 0;
-    std::array<std::uint64_t, 64 * 64 / 2 / 64> hit{};  // one bit per stamp (two pixels or more) of a tile of at most 64x64
-    const int stampsPerRow = p.tileW / p.stampW;
-    for (int qy = ty0; qy < y1; qy += 2)
-        for (int qx = tx0; qx < x1; qx += 2) {
-            const unsigned m = lanesSet[((qy - ty0) / 2) * qw + (qx - tx0) / 2];
-            if (perLane) count += lanes(m);
-            else
-                for (int lane = 0; lane < 4; ++lane)
-                    if (m >> lane & 1u) {
-                        const int stamp = ((qy + (lane >> 1) - ty0) / p.stampH) * stampsPerRow + (qx + (lane & 1) - tx0) / p.stampW;
-                        hit[stamp / 64] |= std::uint64_t(1) << (stamp % 64);
-                    }
-        }
-    if (perLane) return count;
-    for (std::uint64_t word : hit) count += std::popcount(word);
-    return count * p.stampW * p.stampH;
 }
 
 inline Stage Pipeline::stencilDepth(std::size_t idx, float z, const DrawPlan& p, bool early, Pending* pending) const {
@@ -243,8 +222,16 @@ inline float factor(BlendFactor f, const std::array<float, 4>& src, const std::a
 
 }  // namespace detail
 
-inline void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src) const {
+inline void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src, const DrawPlan& p) const {
     std::array<float, 4>& dst = fb_.color[idx];
+    if (p.colorReplace) {
+        dst = src;
+        return;
+    }
+    if (p.colorAdd) {
+        for (int ch = 0; ch < 4; ++ch) dst[ch] += src[ch];
+        return;
+    }
     const BlendState& b = state.blend;
     const float fs = b.enabled ? detail::factor(b.src, src, dst) : 1, fd = b.enabled ? detail::factor(b.dst, src, dst) : 0;
     for (int ch = 0; ch < 4; ++ch)
