@@ -57,12 +57,6 @@ bool sceneEmits(const std::vector<SliceVolume>& volumes) {
     return false;
 }
 
-bool sceneMoves(const std::vector<SliceVolume>& volumes) {
-    for (const SliceVolume& v : volumes)
-        if (v.volume->motion) return true;
-    return false;
-}
-
 int SliceTables::builtCount() const {
     int n = 0;
     for (const auto& s : sets_) n += s ? s->builtCount() : 0;

@@ -109,9 +109,6 @@ private:
     double time_ = 0;
 };
 
-// Whether any of the volumes moves while the shutter is open (Volume::motion).
-bool sceneMoves(const std::vector<SliceVolume>& volumes);
-
 // Adds the emission of a segment whose ends emit eFront and eBack (radiance
 // per own voxel length) to its premultiplied colour (preintegration.hpp).
 inline void addEmission(PreintSample& s, const EmissionWeights& w, const Vec3f& eFront, const Vec3f& eBack) {

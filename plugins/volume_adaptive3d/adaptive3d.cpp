@@ -107,7 +107,7 @@ public:
         Surfaces surfaces;
         if (accel) surfaces = traceSurfaces(scene, *accel, vol, pw, ph, s);
         SliceTables tables(volumes, params_.slice.spacing, block, params_.slice.tableResolution, params_.slice.precision);
-        const std::vector<double> times = shutterTimes(scene, volumes, s);
+        const std::vector<double> times = shutterTimes(scene, s);
         Progress progress("volume.adaptive3d", std::int64_t(slices.imax + 1) * std::int64_t(times.size()), s.showProgress);
         Image image;
         for (double time : times) {
@@ -124,7 +124,7 @@ public:
         ctx.counters.add(kSlices, slices.imax + 1);
         ctx.counters.add(kPreintegrationTables, tables.builtCount());
         if (const int n = tables.emissionBuiltCount()) ctx.counters.add(kEmissionTables, n);
-        if (sceneMoves(volumes)) ctx.counters.add(kShutterPasses, std::int64_t(times.size()));
+        if (scene.volumesMove()) ctx.counters.add(kShutterPasses, std::int64_t(times.size()));
         if (accel) shadeSurfaces(scene, *accel, surfaces.hits, pw, image, ctx);
         return image;
     }
@@ -148,8 +148,8 @@ private:
     // else spp passes, stratified over the shutter with one jitter per seed
     // (a pass shares its instant: the pyramid synthesises rays from
     // neighbours, which must see the volume at the same time).
-    static std::vector<double> shutterTimes(const Scene& scene, const std::vector<SliceVolume>& volumes, const RenderSettings& s) {
-        if (!sceneMoves(volumes)) return {0.0};
+    static std::vector<double> shutterTimes(const Scene& scene, const RenderSettings& s) {
+        if (!scene.volumesMove()) return {0.0};
         const int n = std::max(1, s.spp);
         const double jitter = toUnitFloat(hashCombine(mix64(s.seed), 0x5a77e4));
         std::vector<double> times;

@@ -119,7 +119,7 @@ public:
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // built before the pixel loop
         if (accel) scene.emitters();
         const Frame frame{scene, volumes, slices, oneSlice, offsets, accel, accel ? rayEpsilon(scene) : 0.0f, sceneEmits(volumes),
-                          sceneMoves(volumes), s};
+                          scene.volumesMove(), s};
         const ImagePlane plane(plane_, s);
         Image image = plane.render(ctx, "volume.preint", [&] { return Shader(frame); });
         ctx.counters.add(kSlices, slices.imax + 1);
