@@ -18,7 +18,7 @@ int Image::channelIndex(const std::string& name) const {
 int Image::addChannel(const std::string& name) {
     if (int existing = channelIndex(name); existing >= 0) return existing;
     const std::size_t oldCount = channels_.size();
-    std::vector<float> grown(static_cast<std::size_t>(width_) * height_ * (oldCount + 1), 0.0f);
+    LargeBuffer<float> grown(static_cast<std::size_t>(width_) * height_ * (oldCount + 1), 0.0f);
     for (std::size_t p = 0; p < static_cast<std::size_t>(width_) * height_; ++p)
         std::copy_n(data_.begin() + p * oldCount, oldCount, grown.begin() + p * (oldCount + 1));
     data_ = std::move(grown);

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/base/large_buffer.hpp"
+
 namespace weft {
 
 class Image {
@@ -28,8 +30,8 @@ public:
     float& at(int x, int y, int c) { return data_[offset(x, y) + c]; }
     float at(int x, int y, int c) const { return data_[offset(x, y) + c]; }
 
-    std::vector<float>& data() { return data_; }
-    const std::vector<float>& data() const { return data_; }
+    LargeBuffer<float>& data() { return data_; }
+    const LargeBuffer<float>& data() const { return data_; }
 
 private:
     std::size_t offset(int x, int y) const {
@@ -38,7 +40,7 @@ private:
     int width_ = 0;
     int height_ = 0;
     std::vector<std::string> channels_;
-    std::vector<float> data_;
+    LargeBuffer<float> data_;
 };
 
 }  // namespace weft

@@ -58,7 +58,7 @@ Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window
     const std::string error = imageCodec().read(path, spec, pixels);
     if (!error.empty()) throw Error("image '" + path + "': " + error);
     Image image(spec.width, spec.height, spec.channels);
-    image.data() = std::move(pixels);
+    image.data().assign(pixels.begin(), pixels.end());
     if (window) *window = ImageWindow{spec.x, spec.y, spec.fullWidth, spec.fullHeight};
     if (metadata) metadata->insert(metadata->end(), spec.attributes.begin(), spec.attributes.end());
     return image;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/base/counters.hpp"
+#include "core/base/large_buffer.hpp"
 #include "core/base/render_context.hpp"
 #include "core/scene/scene.hpp"
 
@@ -38,7 +39,7 @@ struct ShadeTexel {
 
 struct GBuffer {
     int width = 0, height = 0;
-    std::vector<GTexel> texels;
+    LargeBuffer<GTexel> texels;
 
     GTexel& at(int x, int y) { return texels[std::size_t(y) * width + x]; }
     const GTexel& at(int x, int y) const { return texels[std::size_t(y) * width + x]; }

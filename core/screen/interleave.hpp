@@ -58,16 +58,16 @@ struct KeepTexel {
     const T& operator()(const T& t) const { return t; }
 };
 
-template <class S, class T, class Convert = KeepTexel>
-void splitOnePass(const std::vector<S>& src, std::vector<T>& dst, const SubBufferLayout& L, Convert convert = {}) {
+template <class Src, class Dst, class Convert = KeepTexel>
+void splitOnePass(const Src& src, Dst& dst, const SubBufferLayout& L, Convert convert = {}) {
     dst.resize(src.size());
     tbb::parallel_for(0, L.height(), [&](int y) {
         for (int x = 0; x < L.width(); ++x) dst[L.splitOffset(x, y)] = convert(src[std::size_t(y) * L.width() + x]);
     });
 }
 
-template <class T>
-void gatherOnePass(const std::vector<T>& src, std::vector<T>& dst, const SubBufferLayout& L) {
+template <class Buffer>
+void gatherOnePass(const Buffer& src, Buffer& dst, const SubBufferLayout& L) {
     dst.resize(src.size());
     tbb::parallel_for(0, L.height(), [&](int y) {
         for (int x = 0; x < L.width(); ++x) dst[std::size_t(y) * L.width() + x] = src[L.splitOffset(x, y)];
@@ -87,8 +87,8 @@ void forEachBlock(const SubBufferLayout& L, int p, int q, Fn fn) {
 }
 
 // Pass 1 (block splitting) or its inverse: swizzle inside one block.
-template <class S, class T, class Convert>
-void swizzleBlock(const std::vector<S>& src, std::vector<T>& dst, const SubBufferLayout& L, int bx, int by, int bw,
+template <class Src, class Dst, class Convert>
+void swizzleBlock(const Src& src, Dst& dst, const SubBufferLayout& L, int bx, int by, int bw,
                   int bh, bool inverse, Convert convert) {
     const std::vector<int> sx = SubBufferLayout::origins(bw, L.n()), sy = SubBufferLayout::origins(bh, L.m());
     for (int ly = 0; ly < bh; ++ly) {
@@ -104,8 +104,8 @@ void swizzleBlock(const std::vector<S>& src, std::vector<T>& dst, const SubBuffe
 }
 
 // Pass 2 (block translation) or its inverse: move the sub-block rectangles.
-template <class T>
-void translateBlock(const std::vector<T>& src, std::vector<T>& dst, const SubBufferLayout& L, int bx, int by, int bw,
+template <class Buffer>
+void translateBlock(const Buffer& src, Buffer& dst, const SubBufferLayout& L, int bx, int by, int bw,
                     int bh, bool inverse) {
     const std::vector<int> sx = SubBufferLayout::origins(bw, L.n()), sy = SubBufferLayout::origins(bh, L.m());
     for (int j = 0; j < L.m(); ++j)
@@ -123,16 +123,16 @@ void translateBlock(const std::vector<T>& src, std::vector<T>& dst, const SubBuf
 }  // namespace detail
 
 // p x q blocks; `scratch` holds the intermediate block-split buffer.
-template <class S, class T, class Convert = KeepTexel>
-void splitTwoPass(const std::vector<S>& src, std::vector<T>& dst, std::vector<T>& scratch, const SubBufferLayout& L, int p,
+template <class Src, class Dst, class Convert = KeepTexel>
+void splitTwoPass(const Src& src, Dst& dst, Dst& scratch, const SubBufferLayout& L, int p,
                   int q, Convert convert = {}) {
     scratch.resize(src.size()), dst.resize(src.size());
     detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::swizzleBlock(src, scratch, L, bx, by, bw, bh, false, convert); });
     detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::translateBlock(scratch, dst, L, bx, by, bw, bh, false); });
 }
 
-template <class T>
-void gatherTwoPass(const std::vector<T>& src, std::vector<T>& dst, std::vector<T>& scratch, const SubBufferLayout& L, int p, int q) {
+template <class Buffer>
+void gatherTwoPass(const Buffer& src, Buffer& dst, Buffer& scratch, const SubBufferLayout& L, int p, int q) {
     scratch.resize(src.size()), dst.resize(src.size());
     detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::translateBlock(src, scratch, L, bx, by, bw, bh, true); });
     detail::forEachBlock(L, p, q, [&](int bx, int by, int bw, int bh) { detail::swizzleBlock(scratch, dst, L, bx, by, bw, bh, true, KeepTexel{}); });

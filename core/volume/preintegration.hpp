@@ -36,6 +36,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/base/large_buffer.hpp"
 #include "core/volume/transfer_function.hpp"
 
 namespace weft {
@@ -87,8 +88,8 @@ private:
     std::vector<double> lengths_;
     int resolution_ = 0;
     PreintPrecision precision_ = PreintPrecision::Float32;
-    std::vector<PreintSample> table_;  // [length][front][back]
-    std::vector<EmissionWeights> emission_;  // the same layout, divided by the length; empty without emission
+    FreshBuffer<PreintSample> table_;  // [length][front][back]; filled whole in parallel
+    FreshBuffer<EmissionWeights> emission_;  // the same layout, divided by the length; empty without emission
 };
 
 }  // namespace weft

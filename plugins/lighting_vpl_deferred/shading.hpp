@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/base/counters.hpp"
+#include "core/base/large_buffer.hpp"
 #include "core/screen/interleave.hpp"
 #include "plugins/lighting_vpl_deferred/vpl.hpp"
 
@@ -35,7 +36,7 @@ struct ShadeConfig {
 };
 
 // `split` is the G-buffer's shading inputs in the layout's split order (plain order for 1 x 1).
-std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<ShadeTexel>& split, const SubBufferLayout& layout,
+LargeBuffer<LightTexel> shadeSubBuffers(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& layout,
                                         const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
                                         Counters& counters);
 
@@ -44,7 +45,7 @@ std::vector<LightTexel> shadeSubBuffers(const Scene& scene, const std::vector<Sh
 // clamp allows (G > gmax), the direct light reflected there, weighted by
 // 1 - gmax / G. `samples` rays per pixel.
 void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
-                        int samples, std::uint64_t seed, std::vector<LightTexel>& light, Counters& counters);
+                        int samples, std::uint64_t seed, LargeBuffer<LightTexel>& light, Counters& counters);
 
 // Direct light from a texel's point of view: one emitter sample (if any)
 // plus every point/directional light, with shadow rays (through the volumes

@@ -129,8 +129,8 @@ public:
         }
 
         const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
-        const std::vector<ShadeTexel> split = splitPass(g, layout, ctx);
-        std::vector<LightTexel> light;
+        const LargeBuffer<ShadeTexel> split = splitPass(g, layout, ctx);
+        LargeBuffer<LightTexel> light;
         {
             ScopedTimer t(ctx.timings, p_.visibility ? "SSM.shade" : "SNSM.shade");
             light = shadeSubBuffers(scene, split, layout, vpls, brdfs, cfg, ctx.counters);
@@ -159,10 +159,10 @@ private:
     }
 
     // BS: the shading inputs in sub-buffer order (1x1: just packed).
-    std::vector<ShadeTexel> splitPass(const GBuffer& g, const SubBufferLayout& layout, RenderContext& ctx) const {
+    LargeBuffer<ShadeTexel> splitPass(const GBuffer& g, const SubBufferLayout& layout, RenderContext& ctx) const {
         const bool interleaved = layout.count() > 1;
         ScopedTimer t(ctx.timings, interleaved ? "BS.split" : "BS.pack");
-        std::vector<ShadeTexel> split, scratch;
+        LargeBuffer<ShadeTexel> split, scratch;
         auto pack = [](const GTexel& texel) { return ShadeTexel(texel); };
         if (!interleaved) split.assign(g.texels.begin(), g.texels.end());
         else if (p_.twoPass) splitTwoPass(g.texels, split, scratch, layout, p_.p, p_.q, pack);
@@ -171,17 +171,17 @@ private:
     }
 
     // BG: the light buffer back in image order.
-    void gatherPass(std::vector<LightTexel>& light, const SubBufferLayout& layout, RenderContext& ctx) const {
+    void gatherPass(LargeBuffer<LightTexel>& light, const SubBufferLayout& layout, RenderContext& ctx) const {
         if (layout.count() == 1) return;
         ScopedTimer t(ctx.timings, "BG.gather");
-        std::vector<LightTexel> gathered, scratch;
+        LargeBuffer<LightTexel> gathered, scratch;
         if (p_.twoPass) gatherTwoPass(light, gathered, scratch, layout, p_.p, p_.q);
         else gatherOnePass(light, gathered, layout);
         light = std::move(gathered);
     }
 
     // B: discontinuity-aware blur of the light factors (glossy ones only when some material is glossy).
-    void blurPass(std::vector<LightTexel>& light, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
+    void blurPass(LargeBuffer<LightTexel>& light, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
                   const SubBufferLayout& layout, RenderContext& ctx) const {
         ScopedTimer t(ctx.timings, "B.blur");
         bool glossy = false;
@@ -190,7 +190,7 @@ private:
                           glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
     }
 
-    Image compose(const Scene& scene, const GBuffer& g, const std::vector<LightTexel>& light,
+    Image compose(const Scene& scene, const GBuffer& g, const LargeBuffer<LightTexel>& light,
                   const std::vector<std::uint8_t>& disc, const std::vector<Vec3f>& eyeT, const SubBufferLayout& layout,
                   const std::vector<Brdf>& brdfs, const ShadeConfig& cfg, Counters& counters) const {
         Image img(g.width, g.height, {"R", "G", "B", "A", "direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G",

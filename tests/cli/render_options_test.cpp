@@ -34,7 +34,8 @@ json recorded(const std::filesystem::path& stats) {
 
 weft::Metadata metadataOf(const std::filesystem::path& exr, std::vector<float>& pixels) {
     weft::Metadata md;
-    pixels = weft::readImage(s(exr), &md).data();
+    const weft::Image image = weft::readImage(s(exr), &md);
+    pixels.assign(image.data().begin(), image.data().end());
     std::erase_if(md, [](const auto& kv) { return kv.first == "weft:input"; });
     return md;
 }

@@ -1,0 +1,47 @@
+#include "core/base/large_buffer.hpp"
+
+#include <cstdint>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+
+namespace weft {
+
+namespace {
+
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+
+std::size_t roundedToHugePages(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+
+}  // namespace
+
+#ifdef __linux__
+
+// An anonymous mapping trimmed to a 2 MiB boundary (huge pages need the
+// alignment), then the hint; a refused hint leaves small pages.
+void* allocateLargePages(std::size_t bytes) {
+    const std::size_t length = roundedToHugePages(bytes);
+    void* raw = mmap(nullptr, length + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED) throw std::bad_alloc();
+    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(raw);
+    const std::uintptr_t aligned = (start + kHugePage - 1) & ~std::uintptr_t(kHugePage - 1);
+    const std::size_t head = aligned - start, tail = kHugePage - head;
+    if (head) munmap(raw, head);
+    if (tail) munmap(reinterpret_cast<void*>(aligned + length), tail);
+    madvise(reinterpret_cast<void*>(aligned), length, MADV_HUGEPAGE);
+    return reinterpret_cast<void*>(aligned);
+}
+
+void releaseLargePages(void* p, std::size_t bytes) noexcept {
+    if (p) munmap(p, roundedToHugePages(bytes));
+}
+
+#else
+
+void* allocateLargePages(std::size_t bytes) { return ::operator new(bytes, std::align_val_t(64)); }
+void releaseLargePages(void* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t(64)); }
+
+#endif
+
+}  // namespace weft

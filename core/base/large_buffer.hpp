@@ -1,0 +1,67 @@
+#pragma once
+// Buffers of a frame's size (images, G-buffers, tables) on transparent huge
+// pages. A buffer of small pages faults in 4 KiB at a time, and on a
+// virtual machine each fault costs microseconds: a 256x256 deferred render
+// spent a third of its time there, on whichever thread touched the page
+// first, which capped its thread scaling. A 2 MiB-aligned mapping the
+// kernel is asked to back with huge pages faults once per 2 MiB. Where the
+// kernel declines (transparent huge pages off), small pages serve as before.
+//
+// LargeBuffer<T> value-initialises like std::vector; FreshBuffer<T> leaves
+// trivial elements uninitialised, for buffers a parallel loop fills whole
+// (the first touch then happens on every thread at once).
+#include <cstddef>
+#include <new>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace weft {
+
+// Below this, the general allocator serves (rounding to 2 MiB would waste
+// more than the faults cost).
+constexpr std::size_t kLargeBufferBytes = std::size_t(1) << 20;
+
+void* allocateLargePages(std::size_t bytes);  // throws std::bad_alloc
+void releaseLargePages(void* p, std::size_t bytes) noexcept;
+
+template <class T, bool ValueInit>
+struct LargePageAllocator {
+    using value_type = T;
+    template <class U>
+    struct rebind {
+        using other = LargePageAllocator<U, ValueInit>;
+    };
+    LargePageAllocator() = default;
+    template <class U>
+    LargePageAllocator(const LargePageAllocator<U, ValueInit>&) noexcept {}
+
+    T* allocate(std::size_t n) {
+        const std::size_t bytes = n * sizeof(T);
+        if (bytes >= kLargeBufferBytes) return static_cast<T*>(allocateLargePages(bytes));
+        return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T) > 16 ? alignof(T) : 16)));
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+        const std::size_t bytes = n * sizeof(T);
+        if (bytes >= kLargeBufferBytes) return releaseLargePages(p, bytes);
+        ::operator delete(p, std::align_val_t(alignof(T) > 16 ? alignof(T) : 16));
+    }
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        if constexpr (ValueInit) ::new (static_cast<void*>(p)) U();
+        else ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+    friend bool operator==(const LargePageAllocator&, const LargePageAllocator&) { return true; }
+    friend bool operator!=(const LargePageAllocator&, const LargePageAllocator&) { return false; }
+};
+
+template <class T>
+using LargeBuffer = std::vector<T, LargePageAllocator<T, true>>;
+template <class T>
+using FreshBuffer = std::vector<T, LargePageAllocator<T, false>>;
+
+}  // namespace weft

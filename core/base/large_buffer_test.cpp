@@ -1,0 +1,40 @@
+#include "core/base/large_buffer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+
+namespace weft {
+namespace {
+
+constexpr std::size_t kLarge = (std::size_t(3) << 20) / sizeof(float) + 7;  // over the threshold, not a whole page
+
+TEST(LargeBuffer, LargeBuffersAreZeroedAndAlignedToHugePages) {
+    LargeBuffer<float> big(kLarge);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(big.data()) % (std::uintptr_t(2) << 20), 0u);
+    EXPECT_TRUE(std::all_of(big.begin(), big.end(), [](float v) { return v == 0.0f; }));
+    big.back() = 5.0f;  // the last element is writable
+    EXPECT_EQ(big.back(), 5.0f);
+}
+
+TEST(LargeBuffer, SmallBuffersAndGrowthKeepValues) {
+    LargeBuffer<int> v;
+    for (int i = 0; i < int(kLarge); ++i) v.push_back(i);  // grows across the threshold
+    ASSERT_EQ(v.size(), kLarge);
+    EXPECT_EQ(v[12345], 12345);
+    EXPECT_EQ(v.back(), int(kLarge) - 1);
+    LargeBuffer<int> copy = v;
+    EXPECT_EQ(copy, v);
+}
+
+TEST(LargeBuffer, FreshBufferHoldsWhatIsWritten) {
+    FreshBuffer<double> fresh(kLarge);
+    for (std::size_t i = 0; i < fresh.size(); ++i) fresh[i] = double(i) * 0.5;
+    EXPECT_EQ(fresh[kLarge - 1], double(kLarge - 1) * 0.5);
+    FreshBuffer<double> small(3, 1.5);  // an explicit value still fills
+    EXPECT_EQ(small[2], 1.5);
+}
+
+}  // namespace
+}  // namespace weft
