@@ -216,7 +216,7 @@ TEST(HwsimStencil, FuncComparesMaskedReferenceAndAppliesFailOps) {
     pipe.drawRect(0, 0, 4, 1, 0, Flat{});
     EXPECT_EQ(pipe.counts().rejected[int(Stage::Stencil)], 2);
     EXPECT_EQ(pipe.counts().samplesPassed, 2);
-    EXPECT_EQ(fb.stencil, (std::vector<std::uint8_t>{0x00, 0x00, 0x03, 0x13}));
+    EXPECT_EQ(fb.stencil, (LargeBuffer<std::uint8_t>{0x00, 0x00, 0x03, 0x13}));
 }
 
 TEST(HwsimDepth, FuncAndWriteMask) {

@@ -28,6 +28,7 @@ void releaseLargePages(void* p, std::size_t bytes) noexcept;
 template <class T, bool ValueInit>
 struct LargePageAllocator {
     using value_type = T;
+    static constexpr std::align_val_t kSmallAlignment{alignof(T) > 16 ? alignof(T) : 16};
     template <class U>
     struct rebind {
         using other = LargePageAllocator<U, ValueInit>;
@@ -39,12 +40,12 @@ struct LargePageAllocator {
     T* allocate(std::size_t n) {
         const std::size_t bytes = n * sizeof(T);
         if (bytes >= kLargeBufferBytes) return static_cast<T*>(allocateLargePages(bytes));
-        return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T) > 16 ? alignof(T) : 16)));
+        return static_cast<T*>(::operator new(bytes, kSmallAlignment));
     }
     void deallocate(T* p, std::size_t n) noexcept {
         const std::size_t bytes = n * sizeof(T);
         if (bytes >= kLargeBufferBytes) return releaseLargePages(p, bytes);
-        ::operator delete(p, std::align_val_t(alignof(T) > 16 ? alignof(T) : 16));
+        ::operator delete(p, kSmallAlignment);
     }
     template <class U>
     void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {

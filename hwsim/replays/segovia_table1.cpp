@@ -152,7 +152,7 @@ ReplayResult runSegovia(const Profile& profile, const ParamSet& p) {
     for (int n : patterns) {
         if (w % n || h % n) throw Error("segovia.table1: width and height must be multiples of " + std::to_string(n));
         const Setup s{w, h, n, lights, cost};
-        std::vector<std::array<float, 4>> first;
+        LargeBuffer<std::array<float, 4>> first;
         bool same = true;
         for (const auto& [name, run] : methods) {
             Framebuffer fb(w, h);
