@@ -4,12 +4,27 @@
 
 namespace weft::hwsim {
 
+namespace {
+
+// A clear of a whole plane, in parallel slabs: a replay clearing depth before
+// each of its passes would otherwise spend a serial memory sweep on each.
+template <class Plane, class Value>
+void fillPlane(Plane& plane, const Value& value, bool parallel) {
+    constexpr std::size_t kSlab = std::size_t(1) << 16;
+    if (!parallel || plane.size() < 4 * kSlab) return std::fill(plane.begin(), plane.end(), value);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, plane.size(), kSlab), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::fill(plane.begin() + std::ptrdiff_t(r.begin()), plane.begin() + std::ptrdiff_t(r.end()), value);
+    });
+}
+
+}  // namespace
+
 void Pipeline::clearDepth(float value) {
-    std::fill(fb_.depth.begin(), fb_.depth.end(), value);
+    fillPlane(fb_.depth, value, parallel_);
     frameDirection_ = 0, coarseLost_ = false, frameBoundsSet_ = false, boundsLost_ = false;
 }
-void Pipeline::clearStencil(std::uint8_t value) { std::fill(fb_.stencil.begin(), fb_.stencil.end(), value); }
-void Pipeline::clearColor(std::array<float, 4> value) { std::fill(fb_.color.begin(), fb_.color.end(), value); }
+void Pipeline::clearStencil(std::uint8_t value) { fillPlane(fb_.stencil, value, parallel_); }
+void Pipeline::clearColor(std::array<float, 4> value) { fillPlane(fb_.color, value, parallel_); }
 
 namespace {
 
@@ -84,6 +99,8 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.quad = pr.shading == ShadingGranularity::Quad;
     p.simple = !p.quad && pr.branchBlockW * pr.branchBlockH == 1 && !p.stencil && !p.bounds && !p.stippleLate && !p.stippleStart &&
                !p.deferWrites && !p.countEarly && !t.writesDepth && (!p.depth || p.zsEarly);
+    p.depthFirst = !p.simple && p.zsEarly && p.depth && !p.stencil && !p.bounds && !p.stippleStart && !p.stippleLate && !p.deferWrites &&
+                   !p.countEarly && !p.emptyQuadsRun && !p.coarse && !t.writesDepth;
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH, p.wholeBlock = pr.lockStepWholeBlock;
     p.colorWrites = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
     const bool everyChannel = state.colorMask[0] && state.colorMask[1] && state.colorMask[2] && state.colorMask[3];
@@ -135,6 +152,54 @@ int Pipeline::scanRows(const PrimitiveSetup& s, const DrawPlan& p, bool full, in
         survivors += bitCount(m);
     }
     return survivors;
+}
+
+namespace {
+
+// One row's depth test with the comparison fixed at compile time, so the
+// loop has no switch; returns the passing bits of `live`.
+template <CompareFunc F>
+std::uint64_t depthTestRow(const PrimitiveSetup& s, float* depth, int tx0, int y, int c0, int c1, std::uint64_t live, bool writes) {
+    std::uint64_t pass = 0;
+    for (int i = c0; i < c1; ++i) {
+        if (!(live >> i & 1u)) continue;
+        const float z = s.depthAt(tx0 + i, y);
+        if (!compare(F, z, depth[i])) continue;
+        if (writes) depth[i] = z;
+        pass |= std::uint64_t(1) << i;
+    }
+    return pass;
+}
+
+template <CompareFunc F>
+void depthTestRowsAs(const PrimitiveSetup& s, Framebuffer& fb, int tx0, int ty0, int x0, int x1, int rowCount, bool writes,
+                     std::uint64_t* live, std::int64_t& rejected) {
+    for (int row = 0; row < rowCount; ++row) {
+        if (!live[row]) continue;
+        const int y = ty0 + row;
+        const std::uint64_t pass = depthTestRow<F>(s, &fb.depth[fb.index(tx0, y)], tx0, y, x0 - tx0, x1 - tx0, live[row], writes);
+        rejected += bitCount(live[row] & ~pass);
+        live[row] = pass;
+    }
+}
+
+}  // namespace
+
+void Pipeline::depthTestRows(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int x0, int x1, int rowCount,
+                             std::uint64_t* live, StageCounts& c) const {
+    std::int64_t& rejected = c.rejected[int(Stage::DepthEarly)];
+    const bool w = p.depthWrites;
+    switch (state.depth.func) {
+        case CompareFunc::Never: return depthTestRowsAs<CompareFunc::Never>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+        case CompareFunc::Less: return depthTestRowsAs<CompareFunc::Less>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+        case CompareFunc::Equal: return depthTestRowsAs<CompareFunc::Equal>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+        case CompareFunc::LessEqual: return depthTestRowsAs<CompareFunc::LessEqual>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+        case CompareFunc::Greater: return depthTestRowsAs<CompareFunc::Greater>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+        case CompareFunc::NotEqual: return depthTestRowsAs<CompareFunc::NotEqual>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+        case CompareFunc::GreaterEqual:
+            return depthTestRowsAs<CompareFunc::GreaterEqual>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+        case CompareFunc::Always: return depthTestRowsAs<CompareFunc::Always>(s, fb_, tx0, ty0, x0, x1, rowCount, w, live, rejected);
+    }
 }
 
 // Coarse tests see per-tile summaries (min/max depth, stencil) as hierarchical

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <span>
 #include <vector>
 
 #include "hwsim/counts.hpp"
@@ -42,6 +43,7 @@ struct Fragment {
     int x, y;
     float z;      // interpolated window depth
     bool helper;  // runs only to complete a 2x2 quad; its results are dropped
+    int primitive = 0;  // gl_PrimitiveID: the triangle's index within its draw call
 };
 
 struct FragmentOutput {
@@ -79,7 +81,12 @@ struct DrawPlan {
     bool quad = false;
     bool countEarly = false;
     bool emptyQuadsRun = false;  // quads emptied by early tests still run (profile quirk)
-    bool simple = false;  // per-pixel programs, at most an early depth test: the short path  // SAMPLES_PASSED counted at the early tests (early_fragment_tests)
+    bool simple = false;  // per-pixel programs, at most an early depth test: the short path
+    // The early tests are a depth test alone, and nothing after them reads
+    // the depth buffer: each tile's pixel rows are depth-tested in one sweep
+    // before any program runs (a primitive covers a pixel once, so the order
+    // within the tile cannot matter).
+    bool depthFirst = false;
     int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
     bool wholeBlock = false;  // a lock-step block that runs costs all its lanes (fixed-width SIMD)
     int stampW = 1, stampH = 1;  // the profile's FRAGMENT_SHADER_INVOCATIONS stamp
@@ -103,6 +110,14 @@ public:
                                  : setupTriangle(v, profile_.fillRule, fb_.width, fb_.height),
              program, traits);
     }
+    // One draw call of many triangles (glDrawArrays(GL_TRIANGLES)); the program
+    // sees each one's index as Fragment::primitive. The work is binned by
+    // screen tiles, each bin taking the triangles in draw order, so every
+    // pixel sees them in GL's order while the bin's part of the framebuffer
+    // stays in cache across triangles (as tiled rasterizers do). Counts equal
+    // those of one drawTriangle per triangle.
+    template <class Program>
+    void drawTriangles(std::span<const std::array<Vertex, 3>> triangles, Program&& program, ProgramTraits traits = {});
     // GL_QUADS: the triangles (0, 1, 2) and (0, 2, 3).
     template <class Program>
     void drawQuad(const Vertex (&v)[4], Program&& program, ProgramTraits traits = {}) {
@@ -130,6 +145,7 @@ public:
 private:
     template <class Program>
     void draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits);
+    void countPrimitive(const PrimitiveSetup& s);
     template <class Program>
     void scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, StageCounts& c) const;
     // Coverage, stipple and scissor of the tile's pixel rows ty0 .. ty0 + rowCount - 1
@@ -137,12 +153,21 @@ private:
     // the scissor. Returns the survivors' number.
     int scanRows(const PrimitiveSetup& s, const DrawPlan& p, bool full, int tx0, int ty0, int x0, int y0, int x1, int y1,
                  int rowCount, std::uint64_t* live, std::uint64_t* scanned, StageCounts& c) const;
+    // The depth test of the live pixels of rows ty0 .. ty0 + rowCount - 1,
+    // columns [x0, x1) (DrawPlan::depthFirst); `live` keeps the passing ones.
+    void depthTestRows(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int x0, int x1, int rowCount,
+                       std::uint64_t* live, StageCounts& c) const;
     void cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int y1, int x1,
                          std::uint8_t* masks, StageCounts& c) const;
     // Both return the lanes whose program ran for the fragment (not as a helper).
     template <class Program>
     unsigned shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
                          StageCounts& c) const;
+    // shadeQuad after the tile's rows were depth-tested (DrawPlan::depthFirst):
+    // no test is left, only the program and the writes.
+    template <class Program>
+    unsigned shadeTestedQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                             StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes) const;
     template <class Program>
     unsigned shadeQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
                    StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes) const;

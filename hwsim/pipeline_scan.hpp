@@ -4,11 +4,15 @@
 
 namespace weft::hwsim {
 
+inline void Pipeline::countPrimitive(const PrimitiveSetup& s) {
+    ++counts_.clippingInputPrimitives;
+    counts_.clippingOutputPrimitives += !(s.zeroArea && profile_.clippingOutputSkipsZeroArea);
+}
+
 template <class Program>
 void Pipeline::draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits) {
     const DrawPlan p = plan(traits);
-    ++counts_.clippingInputPrimitives;
-    counts_.clippingOutputPrimitives += !(s.zeroArea && profile_.clippingOutputSkipsZeroArea);
+    countPrimitive(s);
     if (s.empty()) return;
     const int tx0 = s.x0 / p.tileW * p.tileW, ty0 = s.y0 / p.tileH * p.tileH;
     const int rows = (s.y1 - ty0 + p.tileH - 1) / p.tileH;
@@ -21,6 +25,50 @@ void Pipeline::draw(const PrimitiveSetup& s, Program& program, const ProgramTrai
     const long area = long(s.x1 - s.x0) * (s.y1 - s.y0);
     if (parallel_ && rows > 1 && area >= 16384) tbb::parallel_for(tbb::blocked_range<int>(0, rows), rowsBody);
     else rowsBody(tbb::blocked_range<int>(0, rows));
+    perThread.combine_each([&](const StageCounts& c) { counts_.add(c); });
+}
+
+template <class Program>
+void Pipeline::drawTriangles(std::span<const std::array<Vertex, 3>> triangles, Program&& program, ProgramTraits traits) {
+    const DrawPlan p = plan(traits);  // one state for the whole call, as in GL
+    std::vector<SpanRows> spans(profile_.floatSpans ? triangles.size() : 0);  // each triangle keeps its own
+    std::vector<PrimitiveSetup> setups;
+    setups.reserve(triangles.size());
+    int x0 = fb_.width, y0 = fb_.height, x1 = 0, y1 = 0;  // the union of the boxes
+    long area = 0;
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const Vertex v[3] = {triangles[i][0], triangles[i][1], triangles[i][2]};
+        PrimitiveSetup s = profile_.floatSpans ? setupTriangleSpans(v, fb_.width, fb_.height, spans[i])
+                                               : setupTriangle(v, profile_.fillRule, fb_.width, fb_.height);
+        s.primitive = int(i);
+        countPrimitive(s);
+        if (s.empty()) continue;
+        x0 = std::min(x0, s.x0), y0 = std::min(y0, s.y0), x1 = std::max(x1, s.x1), y1 = std::max(y1, s.y1);
+        area += long(s.x1 - s.x0) * (s.y1 - s.y0);
+        setups.push_back(s);
+    }
+    if (setups.empty()) return;
+    // A bin is one tile row high and kBinTiles tiles wide, on the global tile
+    // grid that draw() uses, so every (triangle, tile) pair is scanned once.
+    constexpr int kBinTiles = 8;
+    const int binW = p.tileW * kBinTiles, bx0 = x0 / binW, by0 = y0 / p.tileH;
+    const int binCols = (x1 - 1) / binW - bx0 + 1, binRows = (y1 - 1) / p.tileH - by0 + 1;
+    tbb::combinable<StageCounts> perThread;
+    auto binsBody = [&](const tbb::blocked_range<int>& r) {
+        StageCounts& c = perThread.local();
+        for (int bin = r.begin(); bin != r.end(); ++bin) {
+            const int bxPix = (bx0 + bin % binCols) * binW, ty = (by0 + bin / binCols) * p.tileH;
+            for (const PrimitiveSetup& s : setups) {
+                if (s.y1 <= ty || s.y0 >= ty + p.tileH || s.x1 <= bxPix || s.x0 >= bxPix + binW) continue;
+                if (!s.spans && classifyTile(s.edges, bxPix, ty, bxPix + binW, ty + p.tileH) == TileCoverage::None) continue;
+                const int txEnd = std::min(s.x1, bxPix + binW);
+                for (int tx = std::max(s.x0, bxPix) / p.tileW * p.tileW; tx < txEnd; tx += p.tileW) scanTile(s, program, p, tx, ty, c);
+            }
+        }
+    };
+    const int bins = binCols * binRows;
+    if (parallel_ && bins > 1 && area >= 16384) tbb::parallel_for(tbb::blocked_range<int>(0, bins), binsBody);
+    else binsBody(tbb::blocked_range<int>(0, bins));
     perThread.combine_each([&](const StageCounts& c) { counts_.add(c); });
 }
 
@@ -38,42 +86,57 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
     const int liveCount = scanRows(s, p, coverage == TileCoverage::Full, tx0, ty0, x0, y0, x1, y1, rowCount, live.data(), scanned.data(), c);
     if (p.statsAtScan) c.fragmentShaderInvocations += stampsHit(scanned.data(), rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
     if (liveCount == 0) return;
+    if (p.depthFirst) depthTestRows(s, p, tx0, ty0, x0, x1, rowCount, live.data(), c);
     const int qw = p.tileW / 2, quadRows = rowCount / 2, quadCols = (x1 - tx0 + 1) / 2;
+    // A quad's live lanes come from the row masks; only coarse culling needs
+    // them all in an array first (it clears whole coarse tiles of them).
+    const auto quadMask = [&](int qyi, int qxi) {
+        return unsigned((live[2 * qyi] >> 2 * qxi & 3u) | (live[2 * qyi + 1] >> 2 * qxi & 3u) << 2);
+    };
     std::array<std::uint8_t, 32 * 32> masks;  // tiles are at most 64 x 64
-    for (int qyi = 0; qyi < quadRows; ++qyi)
-        for (int qxi = 0; qxi < quadCols; ++qxi)
-            masks[qyi * qw + qxi] = std::uint8_t((live[2 * qyi] >> 2 * qxi & 3u) | (live[2 * qyi + 1] >> 2 * qxi & 3u) << 2);
-    if (p.coarse) cullCoarseTiles(s, p, tx0, ty0, y1, x1, masks.data(), c);
-    const int blocks = (p.tileW / p.blockW) * (p.tileH / p.blockH);
+    if (p.coarse) {
+        for (int qyi = 0; qyi < quadRows; ++qyi)
+            for (int qxi = 0; qxi < quadCols; ++qxi) masks[qyi * qw + qxi] = std::uint8_t(quadMask(qyi, qxi));
+        cullCoarseTiles(s, p, tx0, ty0, y1, x1, masks.data(), c);
+    }
+    // Lock-step blocks cost their slowest lane; only the blocks a quad ran in
+    // are set up and summed (a tile often holds a primitive's thin edge only).
     std::array<std::int64_t, 32 * 32> blockMax, blockLanes;  // blocks are at least 2x2 when used: a quad lies in one
+    std::array<std::uint16_t, 32 * 32> touched;
+    std::array<std::uint64_t, 32 * 32 / 64> isTouched;
+    int touchedCount = 0;
     const bool lockStep = p.blockW * p.blockH > 1;
-    if (lockStep) std::fill_n(blockMax.begin(), blocks, 0), std::fill_n(blockLanes.begin(), blocks, 0);
+    if (lockStep) std::fill_n(isTouched.begin(), ((p.tileW / p.blockW) * (p.tileH / p.blockH) + 63) / 64, 0);
     const int blockShiftW = std::countr_zero(unsigned(p.blockW)), blockShiftH = std::countr_zero(unsigned(p.blockH));
+    std::array<std::uint64_t, 64> ran;  // lanes whose program ran, per pixel row (statistics counted where programs run)
+    if (!p.statsAtScan) std::fill_n(ran.begin(), rowCount, 0);
     for (int qyi = 0; qyi < quadRows; ++qyi) {
         std::uint64_t quads = live[2 * qyi] | live[2 * qyi + 1];
         quads = (quads | quads >> 1) & 0x5555555555555555ull;  // bit 2 qxi: the quad had live lanes before coarse culling
         for (; quads; quads &= quads - 1) {
             const int qxi = std::countr_zero(quads) / 2, qx = tx0 + 2 * qxi, qy = ty0 + 2 * qyi;
-            std::uint8_t& m = masks[qyi * qw + qxi];  // becomes the lanes that ran
+            const unsigned m = p.coarse ? masks[qyi * qw + qxi] : quadMask(qyi, qxi);
             if (!m) continue;
-            if (p.simple) m = std::uint8_t(shadePixels(s, program, p, qx, qy, m, c));
+            unsigned lanesRan;
+            if (p.simple) lanesRan = shadePixels(s, program, p, qx, qy, m, c);
             else {
                 const int b = ((2 * qyi) >> blockShiftH) * (p.tileW >> blockShiftW) + ((2 * qxi) >> blockShiftW);
-                m = std::uint8_t(shadeQuad(s, program, p, qx, qy, m, c, lockStep ? &blockMax[b] : nullptr, &blockLanes[b]));
+                if (lockStep && !(isTouched[b >> 6] >> (b & 63) & 1u)) {
+                    isTouched[b >> 6] |= std::uint64_t(1) << (b & 63);
+                    touched[touchedCount++] = std::uint16_t(b), blockMax[b] = 0, blockLanes[b] = 0;
+                }
+                std::int64_t* const blockCost = lockStep ? &blockMax[b] : nullptr;
+                lanesRan = p.depthFirst ? shadeTestedQuad(s, program, p, qx, qy, m, c, blockCost, &blockLanes[b])
+                                        : shadeQuad(s, program, p, qx, qy, m, c, blockCost, &blockLanes[b]);
             }
+            if (!p.statsAtScan) ran[2 * qyi] |= std::uint64_t(lanesRan & 3u) << 2 * qxi, ran[2 * qyi + 1] |= std::uint64_t(lanesRan >> 2 & 3u) << 2 * qxi;
         }
     }
-    if (!p.statsAtScan) {
-        std::array<std::uint64_t, 64> ran{};
-        for (int qyi = 0; qyi < quadRows; ++qyi)
-            for (int qxi = 0; qxi < quadCols; ++qxi) {
-                const std::uint64_t m = masks[qyi * qw + qxi];
-                ran[2 * qyi] |= (m & 3u) << 2 * qxi, ran[2 * qyi + 1] |= (m >> 2 & 3u) << 2 * qxi;
-            }
-        c.fragmentShaderInvocations += stampsHit(ran.data(), rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
+    if (!p.statsAtScan) c.fragmentShaderInvocations += stampsHit(ran.data(), rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
+    for (int i = 0; i < touchedCount; ++i) {
+        const int b = touched[i];
+        c.cost += blockMax[b] * (p.wholeBlock && blockLanes[b] ? p.blockW * p.blockH : blockLanes[b]);
     }
-    if (lockStep)
-        for (int b = 0; b < blocks; ++b) c.cost += blockMax[b] * (p.wholeBlock && blockLanes[b] ? p.blockW * p.blockH : blockLanes[b]);
 }
 
 // The short path (DrawPlan::simple): each live pixel through an optional
@@ -87,22 +150,51 @@ unsigned Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const 
         const int x = qx + (lane & 1), y = qy + (lane >> 1);
         const std::size_t idx = fb_.index(x, y);
         const float z = s.depthAt(x, y);
-        if (p.depth) {
+        if (p.depth && !p.depthFirst) {
             if (!compare(state.depth.func, z, fb_.depth[idx])) { ++c.rejected[int(Stage::DepthEarly)]; continue; }
             if (p.depthWrites) fb_.depth[idx] = z;
         }
         FragmentOutput o;
-        program(Fragment{x, y, z, false}, o);
+        program(Fragment{x, y, z, false, s.primitive}, o);
         ++c.invocations;
         ran |= 1u << lane;
         c.cost += o.cost;
         if (o.discard) { ++c.discarded; continue; }
         ++c.samplesPassed;
         if (p.colorWrites) writeColor(idx, o.color, p);
-        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, z, false}, o);
+        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, z, false, s.primitive}, o);
         c.pixelsWritten += p.colorWrites || p.depthWrites;
     }
     return ran;
+}
+
+template <class Program>
+unsigned Pipeline::shadeTestedQuad(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,
+                                   StageCounts& c, std::int64_t* blockMax, std::int64_t* blockLanes) const {
+    const unsigned shaded = p.quad ? 0xFu : mask;
+    const int ran = lanes(shaded);
+    c.invocations += ran, c.helpers += ran - lanes(mask);
+    FragmentOutput out[4];
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(shaded >> lane & 1u)) continue;
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        const bool inside = x < fb_.width && y < fb_.height;
+        if (inside) program(Fragment{x, y, s.depthAt(x, y), !(mask >> lane & 1u), s.primitive}, out[lane]);
+        if (!blockMax) c.cost += out[lane].cost;
+        else *blockMax = std::max<std::int64_t>(*blockMax, inside ? out[lane].cost : 0);
+    }
+    if (blockMax) *blockLanes += ran;
+    for (int lane = 0; lane < 4; ++lane) {
+        if (!(mask >> lane & 1u)) continue;
+        const FragmentOutput& o = out[lane];
+        if (o.discard) { ++c.discarded; continue; }
+        const int x = qx + (lane & 1), y = qy + (lane >> 1);
+        ++c.samplesPassed;
+        if (p.colorWrites) writeColor(fb_.index(x, y), o.color, p);
+        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, s.depthAt(x, y), false, s.primitive}, o);
+        c.pixelsWritten += p.colorWrites || p.depthWrites;
+    }
+    return mask;  // helpers ran too, but for no fragment
 }
 
 // One 2x2 quad whose covered lanes passed the rasterizer's tests (mask).
@@ -149,7 +241,7 @@ unsigned Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const Dr
         ++c.invocations;
         c.helpers += helper;
         const bool inside = x < fb_.width && y < fb_.height;
-        if (inside) program(Fragment{x, y, helper ? s.depthAt(x, y) : z[lane], helper}, out[lane]);
+        if (inside) program(Fragment{x, y, helper ? s.depthAt(x, y) : z[lane], helper, s.primitive}, out[lane]);
         if (!blockMax) c.cost += out[lane].cost;
         else *blockMax = std::max<std::int64_t>(*blockMax, inside ? out[lane].cost : 0), ++*blockLanes;
     }
@@ -170,7 +262,7 @@ unsigned Pipeline::shadeQuad(const PrimitiveSetup& s, Program& program, const Dr
         }
         if (!p.countEarly) ++c.samplesPassed;
         if (p.colorWrites) writeColor(idx, o.color, p);
-        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false}, o);
+        if constexpr (requires { program.writeOutputs(Fragment{}, o); }) program.writeOutputs(Fragment{x, y, zf, false, s.primitive}, o);
         c.pixelsWritten += p.colorWrites || p.depthWrites;
     }
     return ran;

@@ -425,6 +425,92 @@ TEST(HwsimBounds, ChangingBoundsLosesTheEarlyTestOnGeforce7800) {
 namespace weft::hwsim {
 namespace {
 
+// Overlapping triangles around the centre of a 300x200 target, at varied depths.
+std::vector<std::array<Vertex, 3>> fan(int count) {
+    std::vector<std::array<Vertex, 3>> t;
+    for (int i = 0; i < count; ++i) {
+        const float a = float(i) * 0.7f;
+        t.push_back({Vertex{150 + 180 * std::cos(a), 100 + 150 * std::sin(a), 0.02f * float(i % 7)},
+                     Vertex{150 + 160 * std::cos(a + 2.2f), 100 + 140 * std::sin(a + 2.2f), 0.5f},
+                     Vertex{150 + 170 * std::cos(a + 4.1f), 100 + 130 * std::sin(a + 4.1f), 0.9f}});
+    }
+    return t;
+}
+
+// One draw call of many triangles is binned by screen tiles; every pixel must
+// still see the triangles in order (the blend below is order-dependent), and
+// the program must see each one's index as gl_PrimitiveID.
+TEST(HwsimPipeline, OneDrawCallOfManyTrianglesEqualsOneDrawPerTriangle) {
+    const auto triangles = fan(40);
+    auto program = [](const Fragment& f, FragmentOutput& o) {
+        o.color = {float(f.primitive) / 64.0f, f.z, 0, 0.5f};
+        o.cost = 1 + f.primitive % 3;
+    };
+    auto setUp = [](Pipeline& pipe) {
+        pipe.state.depth = {true, CompareFunc::LessEqual, true};
+        pipe.state.blend = {true, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha};
+    };
+    for (const Profile& pr : builtinProfiles()) {
+        const std::string& profile = pr.name;
+        Framebuffer oneFb(300, 200), manyFb(300, 200);
+        Pipeline one(oneFb, findProfile(profile)), many(manyFb, findProfile(profile));
+        setUp(one), setUp(many);
+        one.drawTriangles(triangles, program);
+        for (std::size_t i = 0; i < triangles.size(); ++i) {
+            const Vertex v[3] = {triangles[i][0], triangles[i][1], triangles[i][2]};
+            many.drawTriangle(v, [&](const Fragment& f, FragmentOutput& o) {
+                Fragment g = f;
+                g.primitive = int(i);
+                program(g, o);
+            });
+        }
+        EXPECT_EQ(one.counts().named(), many.counts().named()) << profile;
+        EXPECT_EQ(oneFb.color, manyFb.color) << profile;
+        EXPECT_EQ(oneFb.depth, manyFb.depth) << profile;
+        EXPECT_EQ(one.counts().clippingInputPrimitives, 40) << profile;
+        EXPECT_GT(one.counts().generated, 50000) << profile;
+        float highest = 0;  // the last triangles drawn must show through somewhere
+        for (const auto& c : oneFb.color) highest = std::max(highest, c[0]);
+        EXPECT_GT(highest, 0.25f) << profile;
+    }
+}
+
+// Where the early tests are a depth test alone, tiles are depth-tested row by
+// row before any program runs. A program that may discard (but does not)
+// keeps the per-quad order of tests where the profile keeps such programs'
+// tests early (deferring their writes); both must count the same.
+TEST(HwsimPipeline, DepthTestedRowsCountAsDepthTestedQuads) {
+    const auto triangles = fan(40);
+    int compared = 0;
+    for (const Profile& pr : builtinProfiles()) {
+        const std::string& profile = pr.name;
+        Framebuffer probeFb(8, 8);
+        Pipeline probe(probeFb, pr);
+        probe.state.depth = {true, CompareFunc::Less, true};
+        if (!probe.plan({.mayDiscard = true}).zsEarly) continue;  // discard moves its tests late there
+        ++compared;
+        auto render = [&](bool mayDiscard) {
+            Framebuffer fb(300, 200);
+            Pipeline pipe(fb, findProfile(profile));
+            pipe.state.depth = {true, CompareFunc::Less, true};
+            const ProgramTraits traits{.mayDiscard = mayDiscard};
+            pipe.drawTriangles(triangles, [](const Fragment& f, FragmentOutput& o) { o.color = {f.z, 0, 0, 1}; }, traits);
+            return std::make_pair(pipe.counts().named(), fb.depth);
+        };
+        const auto [rows, rowDepth] = render(false);
+        const auto [quads, quadDepth] = render(true);
+        EXPECT_EQ(rows, quads) << profile;
+        EXPECT_EQ(rowDepth, quadDepth) << profile;
+        EXPECT_GT(rows.at("fragments.rejected.depth_early") + rows.at("fragments.rejected.depth_late"), 1000) << profile;
+    }
+    EXPECT_GE(compared, 1);
+    Framebuffer fb(8, 8);
+    Pipeline llvmpipe(fb, findProfile("mesa-llvmpipe"));
+    llvmpipe.state.depth = {true, CompareFunc::Less, true};
+    EXPECT_TRUE(llvmpipe.plan({}).depthFirst);  // the two renders above took both paths
+    EXPECT_FALSE(llvmpipe.plan({.mayDiscard = true}).depthFirst);
+}
+
 // Counts and buffers do not depend on how tiles were spread over threads.
 TEST(HwsimPipeline, ThreadedAndSerialDrawsAgree) {
     auto render = [](bool parallel, const char* profile) {

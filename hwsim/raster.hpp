@@ -85,6 +85,7 @@ struct PrimitiveSetup {
     }
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     double z0 = 0, dzdx = 0, dzdy = 0;
+    int primitive = 0;      // index within its draw call (gl_PrimitiveID)
     bool zeroArea = false;  // a triangle of zero area (after snapping): some setups drop it from their statistics
     bool empty() const { return x0 >= x1 || y0 >= y1; }
     float depthAt(int x, int y) const { return float(z0 + dzdx * (x + 0.5) + dzdy * (y + 0.5)); }

@@ -37,22 +37,23 @@ std::vector<SceneTriangle> randomScene(int count, int width, int height, std::ui
     return scene;
 }
 
+// The scene's shading: each triangle's flat shade, picked by gl_PrimitiveID.
 struct SceneProgram {
-    float shade;
+    const std::vector<SceneTriangle>* scene;
     int cost;
-    void operator()(const Fragment&, FragmentOutput& o) const {
+    void operator()(const Fragment& f, FragmentOutput& o) const {
+        const float shade = (*scene)[std::size_t(f.primitive)].shade;
         o.color = {shade, shade, shade, 1};
         o.cost = cost;
     }
 };
 
+// One pass: the whole scene in one draw call, shifted by (dx, dy).
 void drawScene(Pipeline& pipe, const std::vector<SceneTriangle>& scene, float dx, float dy, int cost) {
-    for (const SceneTriangle& t : scene) {
-        const Vertex v[3] = {{t.v[0].x + dx, t.v[0].y + dy, t.v[0].z},
-                             {t.v[1].x + dx, t.v[1].y + dy, t.v[1].z},
-                             {t.v[2].x + dx, t.v[2].y + dy, t.v[2].z}};
-        pipe.drawTriangle(v, SceneProgram{t.shade, cost});
-    }
+    std::vector<std::array<Vertex, 3>> shifted(scene.size());
+    for (std::size_t i = 0; i < scene.size(); ++i)
+        for (int k = 0; k < 3; ++k) shifted[i][k] = {scene[i].v[k].x + dx, scene[i].v[k].y + dy, scene[i].v[k].z};
+    pipe.drawTriangles(shifted, SceneProgram{&scene, cost});
 }
 
 float offset(int i, int n) { return (float(i) + 0.5f) / float(n) - 0.5f; }
