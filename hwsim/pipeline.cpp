@@ -24,7 +24,10 @@ void Pipeline::clearDepth(float value) {
     frameDirection_ = 0, coarseLost_ = false, frameBoundsSet_ = false, boundsLost_ = false;
 }
 void Pipeline::clearStencil(std::uint8_t value) { fillPlane(fb_.stencil, value, parallel_); }
-void Pipeline::clearColor(std::array<float, 4> value) { fillPlane(fb_.color, value, parallel_); }
+void Pipeline::clearColor(std::array<float, 4> value) {
+    if (fb_.channels == 1) return fillPlane(fb_.color, value[0], parallel_);
+    for (std::size_t i = 0; i < fb_.color.size(); ++i) fb_.color[i] = value[i % std::size_t(fb_.channels)];
+}
 
 namespace {
 
@@ -102,8 +105,9 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.depthFirst = !p.simple && p.zsEarly && p.depth && !p.stencil && !p.bounds && !p.stippleStart && !p.stippleLate && !p.deferWrites &&
                    !p.countEarly && !p.emptyQuadsRun && !p.coarse && !t.writesDepth;
     p.blockW = pr.branchBlockW, p.blockH = pr.branchBlockH, p.wholeBlock = pr.lockStepWholeBlock;
-    p.colorWrites = state.colorMask[0] || state.colorMask[1] || state.colorMask[2] || state.colorMask[3];
-    const bool everyChannel = state.colorMask[0] && state.colorMask[1] && state.colorMask[2] && state.colorMask[3];
+    bool anyChannel = false, everyChannel = true;  // of those the target has
+    for (int ch = 0; ch < fb_.channels; ++ch) anyChannel |= state.colorMask[std::size_t(ch)], everyChannel &= state.colorMask[std::size_t(ch)];
+    p.colorWrites = anyChannel;
     const BlendState& blend = state.blend;
     p.colorReplace = everyChannel && !blend.enabled;
     p.colorAdd = everyChannel && blend.enabled && blend.src == BlendFactor::One && blend.dst == BlendFactor::One;

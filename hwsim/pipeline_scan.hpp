@@ -315,19 +315,21 @@ inline float factor(BlendFactor f, const std::array<float, 4>& src, const std::a
 }  // namespace detail
 
 inline void Pipeline::writeColor(std::size_t idx, const std::array<float, 4>& src, const DrawPlan& p) const {
-    std::array<float, 4>& dst = fb_.color[idx];
+    float* dst = fb_.colorAt(idx);
+    const int channels = fb_.channels;
     if (p.colorReplace) {
-        dst = src;
+        for (int ch = 0; ch < channels; ++ch) dst[ch] = src[std::size_t(ch)];
         return;
     }
     if (p.colorAdd) {
-        for (int ch = 0; ch < 4; ++ch) dst[ch] += src[ch];
+        for (int ch = 0; ch < channels; ++ch) dst[ch] += src[std::size_t(ch)];
         return;
     }
+    const std::array<float, 4> stored = fb_.texel(idx);  // what the blend factors read (DST_ALPHA of a target without alpha is 1)
     const BlendState& b = state.blend;
-    const float fs = b.enabled ? detail::factor(b.src, src, dst) : 1, fd = b.enabled ? detail::factor(b.dst, src, dst) : 0;
-    for (int ch = 0; ch < 4; ++ch)
-        if (state.colorMask[ch]) dst[ch] = b.enabled ? src[ch] * fs + dst[ch] * fd : src[ch];
+    const float fs = b.enabled ? detail::factor(b.src, src, stored) : 1, fd = b.enabled ? detail::factor(b.dst, src, stored) : 0;
+    for (int ch = 0; ch < channels; ++ch)
+        if (state.colorMask[std::size_t(ch)]) dst[ch] = b.enabled ? src[std::size_t(ch)] * fs + dst[ch] * fd : src[std::size_t(ch)];
 }
 
 }  // namespace weft::hwsim

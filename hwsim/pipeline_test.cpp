@@ -65,7 +65,7 @@ TEST(HwsimRaster, SharedEdgesCoverEveryPixelOnce) {
         pipe.state.blend = {true, BlendFactor::One, BlendFactor::One};
         pipe.drawQuad(q, Flat{});
         EXPECT_EQ(pipe.counts().generated, 24);
-        for (const auto& c : fb.color) EXPECT_TRUE(c[0] == 0 || c[0] == 1);  // never twice
+        for (std::size_t i = 0; i < fb.color.size(); i += 4) EXPECT_TRUE(fb.color[i] == 0 || fb.color[i] == 1);  // never twice
     }
 }
 
@@ -106,9 +106,9 @@ TEST(HwsimStipple, KeepsOneClassAndRepeatsEvery32Pixels) {
     EXPECT_EQ(pipe.counts().invocations, 256);
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) {
-            const bool kept = fb.color[fb.index(x, y)][0] == 1;
+            const bool kept = fb.colorAt(fb.index(x, y))[0] == 1;
             EXPECT_EQ(kept, x % 4 == 1 && y % 4 == 2);
-            EXPECT_EQ(kept, fb.color[fb.index(x + 32, y + 32)][0] == 1);
+            EXPECT_EQ(kept, fb.colorAt(fb.index(x + 32, y + 32))[0] == 1);
         }
 }
 
@@ -148,9 +148,9 @@ TEST(HwsimScissor, KeepsTheRectangle) {
     EXPECT_EQ(pipe.counts().generated, 100);
     EXPECT_EQ(pipe.counts().rejected[int(Stage::Scissor)], 80);
     EXPECT_EQ(pipe.counts().pixelsWritten, 20);
-    EXPECT_EQ(fb.color[fb.index(2, 3)][0], 1);
-    EXPECT_EQ(fb.color[fb.index(6, 3)][0], 0);
-    EXPECT_EQ(fb.color[fb.index(5, 8)][0], 0);
+    EXPECT_EQ(fb.colorAt(fb.index(2, 3))[0], 1);
+    EXPECT_EQ(fb.colorAt(fb.index(6, 3))[0], 0);
+    EXPECT_EQ(fb.colorAt(fb.index(5, 8))[0], 0);
 }
 
 // Stored depths 0.25, 0.5, 0.75, 1 in columns; the fragment's own depth (0.9) plays no part.
@@ -164,8 +164,8 @@ TEST(HwsimBounds, TestsStoredDepthWithInclusiveEdges) {
         pipe.drawRect(0, 0, 4, 2, 0.9f, Flat{});
         EXPECT_EQ(pipe.counts().samplesPassed, 4) << name;
         EXPECT_EQ(pipe.counts().rejected[int(Stage::Bounds)], 4) << name;
-        EXPECT_EQ(fb.color[fb.index(1, 1)][0], 1) << name;
-        EXPECT_EQ(fb.color[fb.index(2, 1)][0], 0) << name;
+        EXPECT_EQ(fb.colorAt(fb.index(1, 1))[0], 1) << name;
+        EXPECT_EQ(fb.colorAt(fb.index(2, 1))[0], 0) << name;
     }
 }
 
@@ -355,12 +355,34 @@ TEST(HwsimBlend, AddsAndMasks) {
     auto half = [](const Fragment&, FragmentOutput& o) { o.color = {0.5f, 0.5f, 0.25f, 1}; };
     pipe.drawRect(0, 0, 2, 2, 0, half);
     pipe.drawRect(0, 0, 2, 2, 0, half);
-    EXPECT_EQ(fb.color[0][0], 1.0f);
-    EXPECT_EQ(fb.color[0][1], 0.0f);
-    EXPECT_EQ(fb.color[0][2], 0.5f);
+    EXPECT_EQ(fb.color[0], 1.0f);
+    EXPECT_EQ(fb.color[1], 0.0f);
+    EXPECT_EQ(fb.color[2], 0.5f);
     pipe.state.blend = {true, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha};
     pipe.drawRect(0, 0, 2, 2, 0, [](const Fragment&, FragmentOutput& o) { o.color = {0, 0, 0, 0.25f}; });
-    EXPECT_EQ(fb.color[0][0], 0.75f);
+    EXPECT_EQ(fb.color[0], 0.75f);
+}
+
+// A GL_R32F target keeps the red channel only; a fetch of it reads
+// (r, 0, 0, 1), and blend factors see that alpha of 1.
+TEST(HwsimBlend, OneChannelTargetsKeepRedAndReadAlphaAsOne) {
+    Framebuffer fb(2, 2, 1.0f, 1);
+    ASSERT_EQ(fb.color.size(), 4u);
+    Pipeline pipe(fb, findProfile("ideal"));
+    pipe.drawRect(0, 0, 2, 2, 0, [](const Fragment&, FragmentOutput& o) { o.color = {0.5f, 0.25f, 0.125f, 0}; });
+    EXPECT_EQ(fb.color[3], 0.5f);
+    EXPECT_EQ(fb.texel(3), (std::array<float, 4>{0.5f, 0, 0, 1}));
+    pipe.state.blend = {true, BlendFactor::One, BlendFactor::One};
+    pipe.drawRect(0, 0, 2, 2, 0, [](const Fragment&, FragmentOutput& o) { o.color = {0.25f, 9, 9, 9}; });
+    EXPECT_EQ(fb.color[0], 0.75f);
+    pipe.state.blend = {true, BlendFactor::Zero, BlendFactor::DstAlpha};  // keeps the stored red times 1
+    pipe.drawRect(0, 0, 2, 2, 0, [](const Fragment&, FragmentOutput& o) { o.color = {0.5f, 0, 0, 0}; });
+    EXPECT_EQ(fb.color[0], 0.75f);
+    pipe.state.colorMask = {false, true, true, true};  // no channel of this target: nothing written
+    pipe.state.blend = {};
+    pipe.drawRect(0, 0, 2, 2, 0, [](const Fragment&, FragmentOutput& o) { o.color = {0, 0, 0, 0}; });
+    EXPECT_EQ(fb.color[0], 0.75f);
+    EXPECT_THROW(Framebuffer(2, 2, 1.0f, 5), std::invalid_argument);
 }
 
 TEST(HwsimQuery, CountsSamplesPassedBetweenBeginAndEnd) {
@@ -470,7 +492,7 @@ TEST(HwsimPipeline, OneDrawCallOfManyTrianglesEqualsOneDrawPerTriangle) {
         EXPECT_EQ(one.counts().clippingInputPrimitives, 40) << profile;
         EXPECT_GT(one.counts().generated, 50000) << profile;
         float highest = 0;  // the last triangles drawn must show through somewhere
-        for (const auto& c : oneFb.color) highest = std::max(highest, c[0]);
+        for (std::size_t i = 0; i < oneFb.color.size(); i += 4) highest = std::max(highest, oneFb.color[i]);
         EXPECT_GT(highest, 0.25f) << profile;
     }
 }

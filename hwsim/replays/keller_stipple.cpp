@@ -65,7 +65,7 @@ ReplayResult runKeller(const Profile& profile, const ParamSet& p) {
     ReplayResult result;
     result.baseline = "supersampled";
 
-    Framebuffer interleavedFb(w, h);
+    Framebuffer interleavedFb(w, h, 1.0f, 1);  // GL_R32F, as the probe renders
     Pipeline interleaved(interleavedFb, profile);
     interleaved.state.depth = {true, CompareFunc::Less, true};
     interleaved.state.stipple.enabled = true;
@@ -76,7 +76,7 @@ ReplayResult runKeller(const Profile& profile, const ParamSet& p) {
         }
     result.variants.push_back({"interleaved", withStageCounts(interleaved.counts(), {{"passes", n * n}})});
 
-    Framebuffer superFb(w, h);
+    Framebuffer superFb(w, h, 1.0f, 1);
     Pipeline super(superFb, profile);
     super.state.depth = {true, CompareFunc::Less, true};
     super.state.blend = {true, BlendFactor::One, BlendFactor::One};  // accumulate

@@ -53,7 +53,7 @@ Image toImage(const Framebuffer& fb) {
     for (int y = 0; y < fb.height; ++y)
         for (int x = 0; x < fb.width; ++x) {
             float* px = img.pixel(x, y);
-            px[0] = px[1] = px[2] = fb.color[fb.index(x, fb.height - 1 - y)][0], px[3] = 1;
+            px[0] = px[1] = px[2] = fb.colorAt(fb.index(x, fb.height - 1 - y))[0], px[3] = 1;
         }
     return img;
 }
@@ -110,7 +110,7 @@ StageCounts runSplit(const Setup& s, const Profile& profile, Framebuffer& fb) {
         const int i = sx / sw, j = sy / sh;
         x = (sx % sw) * s.n + i, y = (sy % sh) * s.n + j;
     };
-    Framebuffer split(s.w, s.h);
+    Framebuffer split(s.w, s.h, 1.0f, 1);  // GL_R32F, as the probe's split accumulation buffer
     Pipeline pipe(split, profile);
     pipe.drawRect(0, 0, s.w, s.h, 0, [](const Fragment&, FragmentOutput& o) { o.color = {0, 0, 0, 0}; });  // split pass (copy)
     additive(pipe);
@@ -127,7 +127,7 @@ StageCounts runSplit(const Setup& s, const Profile& profile, Framebuffer& fb) {
     Pipeline gather(fb, profile);  // gather pass (copy back)
     gather.drawRect(0, 0, s.w, s.h, 0, [&](const Fragment& f, FragmentOutput& o) {
         const int i = f.x % s.n, j = f.y % s.n;
-        o.color = split.color[split.index(i * sw + f.x / s.n, j * sh + f.y / s.n)];
+        o.color = split.texel(split.index(i * sw + f.x / s.n, j * sh + f.y / s.n));
     });
     counts.add(gather.counts());
     return counts;
@@ -142,7 +142,7 @@ ReplayResult runSegovia(const Profile& profile, const ParamSet& p) {
     ReplayResult result;
     result.baseline = "none";
     {
-        Framebuffer fb(w, h);
+        Framebuffer fb(w, h, 1.0f, 1);  // GL_R32F, as the probe's accumulation buffer
         const Setup s{w, h, 1, lights, cost};
         result.variants.push_back({"none", withStageCounts(runNone(s, profile, fb), {{"passes", lights}})});
     }
@@ -152,10 +152,10 @@ ReplayResult runSegovia(const Profile& profile, const ParamSet& p) {
     for (int n : patterns) {
         if (w % n || h % n) throw Error("segovia.table1: width and height must be multiples of " + std::to_string(n));
         const Setup s{w, h, n, lights, cost};
-        LargeBuffer<std::array<float, 4>> first;
+        LargeBuffer<float> first;
         bool same = true;
         for (const auto& [name, run] : methods) {
-            Framebuffer fb(w, h);
+            Framebuffer fb(w, h, 1.0f, 1);
             const StageCounts c = run(s, profile, fb);
             const std::string label = std::string(name) + " " + std::to_string(n) + "x" + std::to_string(n);
             const int passes = lights + (std::string(name) == "split" ? 2 : 0);

@@ -40,7 +40,7 @@ inline Counts runOnHwsim(const Case& c, const Profile& profile) {
     counts.clipIn = k.clippingInputPrimitives, counts.clipOut = k.clippingOutputPrimitives;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
-            if (fb.color[fb.index(x, y)][0] != 0) counts.markWritten(x, y);
+            if (fb.colorAt(fb.index(x, y))[0] != 0) counts.markWritten(x, y);
     return counts;
 }
 
