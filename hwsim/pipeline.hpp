@@ -146,6 +146,10 @@ private:
     template <class Program>
     void draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits);
     void countPrimitive(const PrimitiveSetup& s);
+    // Every tile of every primitive through scanTile, binned by screen tiles
+    // (the primitives' order kept within each bin), counts added.
+    template <class Program>
+    void scanBinned(std::span<const PrimitiveSetup> setups, Program& program, const DrawPlan& p);
     template <class Program>
     void scanTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, StageCounts& c) const;
     // Coverage, stipple and scissor of the tile's pixel rows ty0 .. ty0 + rowCount - 1

@@ -13,19 +13,7 @@ template <class Program>
 void Pipeline::draw(const PrimitiveSetup& s, Program& program, const ProgramTraits& traits) {
     const DrawPlan p = plan(traits);
     countPrimitive(s);
-    if (s.empty()) return;
-    const int tx0 = s.x0 / p.tileW * p.tileW, ty0 = s.y0 / p.tileH * p.tileH;
-    const int rows = (s.y1 - ty0 + p.tileH - 1) / p.tileH;
-    tbb::combinable<StageCounts> perThread;
-    auto rowsBody = [&](const tbb::blocked_range<int>& r) {
-        StageCounts& c = perThread.local();
-        for (int row = r.begin(); row != r.end(); ++row)
-            for (int tx = tx0; tx < s.x1; tx += p.tileW) scanTile(s, program, p, tx, ty0 + row * p.tileH, c);
-    };
-    const long area = long(s.x1 - s.x0) * (s.y1 - s.y0);
-    if (parallel_ && rows > 1 && area >= 16384) tbb::parallel_for(tbb::blocked_range<int>(0, rows), rowsBody);
-    else rowsBody(tbb::blocked_range<int>(0, rows));
-    perThread.combine_each([&](const StageCounts& c) { counts_.add(c); });
+    if (!s.empty()) scanBinned(std::span<const PrimitiveSetup>(&s, 1), program, p);
 }
 
 template <class Program>
@@ -34,22 +22,28 @@ void Pipeline::drawTriangles(std::span<const std::array<Vertex, 3>> triangles, P
     std::vector<SpanRows> spans(profile_.floatSpans ? triangles.size() : 0);  // each triangle keeps its own
     std::vector<PrimitiveSetup> setups;
     setups.reserve(triangles.size());
-    int x0 = fb_.width, y0 = fb_.height, x1 = 0, y1 = 0;  // the union of the boxes
-    long area = 0;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
         const Vertex v[3] = {triangles[i][0], triangles[i][1], triangles[i][2]};
         PrimitiveSetup s = profile_.floatSpans ? setupTriangleSpans(v, fb_.width, fb_.height, spans[i])
                                                : setupTriangle(v, profile_.fillRule, fb_.width, fb_.height);
         s.primitive = int(i);
         countPrimitive(s);
-        if (s.empty()) continue;
+        if (!s.empty()) setups.push_back(s);
+    }
+    if (!setups.empty()) scanBinned(setups, program, p);
+}
+
+// Bins are one tile row high and kBinTiles tiles wide, on a global tile grid,
+// so every (primitive, tile) pair is scanned once; each bin takes the
+// primitives in draw order, and bins run in parallel.
+template <class Program>
+void Pipeline::scanBinned(std::span<const PrimitiveSetup> setups, Program& program, const DrawPlan& p) {
+    int x0 = fb_.width, y0 = fb_.height, x1 = 0, y1 = 0;  // the union of the boxes
+    long area = 0;
+    for (const PrimitiveSetup& s : setups) {
         x0 = std::min(x0, s.x0), y0 = std::min(y0, s.y0), x1 = std::max(x1, s.x1), y1 = std::max(y1, s.y1);
         area += long(s.x1 - s.x0) * (s.y1 - s.y0);
-        setups.push_back(s);
     }
-    if (setups.empty()) return;
-    // A bin is one tile row high and kBinTiles tiles wide, on the global tile
-    // grid that draw() uses, so every (triangle, tile) pair is scanned once.
     constexpr int kBinTiles = 8;
     const int binW = p.tileW * kBinTiles, bx0 = x0 / binW, by0 = y0 / p.tileH;
     const int binCols = (x1 - 1) / binW - bx0 + 1, binRows = (y1 - 1) / p.tileH - by0 + 1;
@@ -150,7 +144,7 @@ unsigned Pipeline::shadePixels(const PrimitiveSetup& s, Program& program, const 
         const int x = qx + (lane & 1), y = qy + (lane >> 1);
         const std::size_t idx = fb_.index(x, y);
         const float z = s.depthAt(x, y);
-        if (p.depth && !p.depthFirst) {
+        if (p.depth) {
             if (!compare(state.depth.func, z, fb_.depth[idx])) { ++c.rejected[int(Stage::DepthEarly)]; continue; }
             if (p.depthWrites) fb_.depth[idx] = z;
         }
