@@ -17,6 +17,15 @@ const char* contentName(Content c) {
     return "no scene content";
 }
 
+std::string techniquesWith(const std::function<bool(const TechniqueInfo&)>& has) {
+    std::vector<std::string> names;
+    for (const TechniqueInfo* t : techniques().all())
+        if (has(*t)) names.push_back(t->name);
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i) list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return list.empty() ? "no technique" : list;
+}
+
 void checkTechniqueContent(const TechniqueInfo& info, const Scene& scene) {
     const Content needs = Content((scene.volumes.empty() ? 0u : 1u) | (scene.meshes.empty() ? 0u : 2u));
     if (covers(info.renders, needs)) return;

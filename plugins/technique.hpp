@@ -69,7 +69,14 @@ struct TechniqueInfo {
     // (Volume::motion) though its camera renders one instant; motionBlur
     // techniques blur both. The host refuses moving volumes to the others.
     bool velocityBlur = false;
+    // Whether it renders volume emission (Volume::emission); the host
+    // refuses emitting volumes to the others.
+    bool emission = false;
 };
+
+// The registered techniques for which `has` holds, as "a, b or c" (the
+// alternatives a refusal names).
+std::string techniquesWith(const std::function<bool(const TechniqueInfo&)>& has);
 
 // Throws when the scene holds volumes or meshes the technique does not
 // render, naming what would be dropped and the techniques that render it all.

@@ -83,16 +83,17 @@ private:
 };
 
 // For techniques that do not render volume emission: an Error naming the
-// first emitting volume and the techniques that do render it.
-void requireNoEmission(const Scene& scene, const std::string& technique);
+// first emitting volume and `alternatives`, the techniques that do.
+void requireNoEmission(const Scene& scene, const std::string& technique, const std::string& alternatives);
 // For techniques that render one instant of a volume: an Error naming the
-// first volume that moves by its velocity while the shutter is open.
-void requireStillVolumes(const Scene& scene, const std::string& technique);
+// first volume that moves by its velocity while the shutter is open, and
+// `alternatives`, the techniques that blur it.
+void requireStillVolumes(const Scene& scene, const std::string& technique, const std::string& alternatives);
 // For techniques that do not scatter light in volumes (a colour grid tints
 // the scattering only): an Error naming the first volume whose colour grid
 // the scene file names. A bare .vdb's colour, found by its conventional
 // name, is not an error: unusedColorGrids says it in one line instead.
-void requireNoColorGrids(const Scene& scene, const std::string& technique);
+void requireNoColorGrids(const Scene& scene, const std::string& technique, const std::string& alternatives);
 // "" or one line naming the volumes whose colour grid the technique leaves unused.
 std::string unusedColorGrids(const Scene& scene, const std::string& technique);
 

@@ -567,18 +567,18 @@ bool Scene::volumesMove() const {
     return false;
 }
 
-void requireStillVolumes(const Scene& scene, const std::string& technique) {
+void requireStillVolumes(const Scene& scene, const std::string& technique, const std::string& alternatives) {
     for (const Volume& v : scene.volumes)
         if (v.motion)
             throw Error(technique + " does not blur volumes by their velocity; volume '" + v.source + "' moves (" + v.grids +
-                        ") while the shutter is open: render it with volume.raymarch, volume.singlescatter, volume.preint, volume.adaptive3d or mesh.pathtrace, or close the shutter (camera.shutter [0, 0])");
+                        ") while the shutter is open: render it with " + alternatives + ", or close the shutter (camera.shutter [0, 0])");
 }
 
-void requireNoColorGrids(const Scene& scene, const std::string& technique) {
+void requireNoColorGrids(const Scene& scene, const std::string& technique, const std::string& alternatives) {
     for (const Volume& v : scene.volumes)
         if (v.color && !v.gridsPicked)
             throw Error(technique + " does not scatter light, so it would not use the colour grid of volume '" + v.source + "' (" + v.grids +
-                        "): render it with volume.singlescatter or mesh.pathtrace, or leave the colour out of 'grids'");
+                        "): render it with " + alternatives + ", or leave the colour out of 'grids'");
 }
 
 std::string unusedColorGrids(const Scene& scene, const std::string& technique) {
@@ -589,11 +589,11 @@ std::string unusedColorGrids(const Scene& scene, const std::string& technique) {
     return technique + " does not scatter light: the colour grid of " + sources + " is not used";
 }
 
-void requireNoEmission(const Scene& scene, const std::string& technique) {
+void requireNoEmission(const Scene& scene, const std::string& technique, const std::string& alternatives) {
     for (const Volume& v : scene.volumes)
         if (v.emission)
             throw Error(technique + " does not render volume emission; volume '" + v.source + "' emits (" + v.grids +
-                        "): render it with volume.raymarch, volume.singlescatter, volume.preint, volume.adaptive3d or mesh.pathtrace");
+                        "): render it with " + alternatives);
 }
 
 Camera Scene::cameraAt(double u) const {

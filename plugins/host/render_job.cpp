@@ -216,10 +216,12 @@ CheckedRender checkRender(const RenderRequest& r, const Scene& scene) {
     c.params = info.params.parse(given);
     checkTechniqueContent(info, scene);
     if (scene.cameraMoves() && !info.motionBlur)
-        throw Error("the camera moves while the shutter is open, and " + info.name +
-                    " renders one instant: use volume.raymarch, volume.singlescatter or mesh.pathtrace for motion blur, or camera.shutter [0, 0]");
-    if (!info.motionBlur && !info.velocityBlur) requireStillVolumes(scene, info.name);
-    if (!info.scatters) requireNoColorGrids(scene, info.name);
+        throw Error("the camera moves while the shutter is open, and " + info.name + " renders one instant: use " +
+                    techniquesWith([](const TechniqueInfo& t) { return t.motionBlur; }) + " for motion blur, or camera.shutter [0, 0]");
+    if (!info.motionBlur && !info.velocityBlur)
+        requireStillVolumes(scene, info.name, techniquesWith([](const TechniqueInfo& t) { return t.motionBlur || t.velocityBlur; }));
+    if (!info.scatters) requireNoColorGrids(scene, info.name, techniquesWith([](const TechniqueInfo& t) { return t.scatters; }));
+    if (!info.emission) requireNoEmission(scene, info.name, techniquesWith([](const TechniqueInfo& t) { return t.emission; }));
     return c;
 }
 

@@ -134,7 +134,6 @@ class AdaptiveIndirect final : public Technique {
 public:
     AdaptiveIndirect(const Scene& scene, const ParamSet& p) : p_(readParams(p)) {
         requireMeshLights(scene, "lighting.adaptive_indirect");
-        requireNoEmission(scene, "lighting.adaptive_indirect");
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {

@@ -99,7 +99,6 @@ class VplDeferred final : public Technique {
 public:
     VplDeferred(const Scene& scene, const ParamSet& ps) : p_(readParams(ps)) {
         requireMeshLights(scene, "lighting.vpl_deferred");
-        requireNoEmission(scene, "lighting.vpl_deferred");
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {

@@ -308,6 +308,8 @@ const TechniqueRegistrar registrar{{
     /*reference=*/{"mesh.pathtrace", {}, 4096},
     /*knobs=*/{{"spp", {"1", "4", "16", "64", "256"}}},
     /*scatters=*/true,
+    /*velocityBlur=*/false,
+    /*emission=*/true,
 }};
 
 }  // namespace

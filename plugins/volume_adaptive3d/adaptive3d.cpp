@@ -264,6 +264,7 @@ const TechniqueRegistrar registrar{{
     /*knobs=*/{{"lmax", {"3", "2", "1", "0"}}, {"spacing", {"2", "1", "0.5"}}, {"spp", {"1", "4", "16", "64"}}},
     /*scatters=*/false,
     /*velocityBlur=*/true,
+    /*emission=*/true,
 }};
 
 }  // namespace

@@ -250,6 +250,7 @@ const TechniqueRegistrar registrar{{
     /*knobs=*/{{"spacing", {"4", "2", "1", "0.5"}}, {"table_res", {"64", "256"}}, {"spp", {"1", "4", "16", "64"}}},
     /*scatters=*/false,
     /*velocityBlur=*/true,
+    /*emission=*/true,
 }};
 
 }  // namespace

@@ -165,6 +165,9 @@ const TechniqueRegistrar registrar{{
     /*bytesPerPixel=*/32,
     /*reference=*/{"volume.raymarch", {"step=0.1"}, 256},
     /*knobs=*/{{"step", {"2", "1", "0.5", "0.25", "0.125"}}, {"spp", {"1", "4", "16", "64"}}},
+    /*scatters=*/false,
+    /*velocityBlur=*/false,
+    /*emission=*/true,
 }};
 
 }  // namespace

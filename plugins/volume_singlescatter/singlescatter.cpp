@@ -123,6 +123,8 @@ const TechniqueRegistrar registrar{{
     /*knobs=*/{{"step", {"2", "1", "0.5"}}, {"shadowstep", {"6", "3", "1"}}, {"spp", {"1", "4", "16"}},
                  {"estimator", {"cached", "raymarch"}}},
     /*scatters=*/true,
+    /*velocityBlur=*/false,
+    /*emission=*/true,
 }};
 
 }  // namespace

@@ -134,6 +134,24 @@ TEST(VolumeEmission, EmissiveAbsorbingSlabMatchesItsClosedForm) {
     }
 }
 
+// The techniques that do not render emission refuse an emitting volume in
+// one line that names, from the registry's flags, those that do.
+TEST(VolumeEmission, TechniquesWithoutEmissionRefuseItNamingThoseWithIt) {
+    test::TempDir dir;
+    const std::string scene = slabScene(dir, "");
+    for (const char* t : {"lighting.vpl_deferred", "lighting.adaptive_indirect"}) {
+        const std::string e = test::errorOf([&] { test::render(scene, "5x5", {}, t); });
+        const std::size_t with = e.find("render it with ");
+        ASSERT_NE(e.find(std::string(t) + " does not render volume emission; volume '"), std::string::npos) << e;
+        ASSERT_NE(with, std::string::npos) << e;
+        const std::string alternatives = e.substr(with);
+        for (const char* able : {"volume.raymarch", "volume.singlescatter", "volume.preint", "volume.adaptive3d", "mesh.pathtrace"})
+            EXPECT_NE(alternatives.find(able), std::string::npos) << e;
+        EXPECT_EQ(alternatives.find("lighting."), std::string::npos) << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    }
+}
+
 // Emission without any density: nothing absorbs, L = e d.
 TEST(VolumeEmission, EmissionAloneIntegratesAlongTheRay) {
     test::TempDir dir;

@@ -133,6 +133,10 @@ TEST(VolumeMotion, WrongSettingsAreOneLineErrors) {
     EXPECT_NE(sceneWith(R"("grids": {"velocity": "vel"}, "motion": {"fps": 0})").find("motion.fps = 0 is outside"), std::string::npos);
     const std::string e = test::errorOf([&] { test::render(movingScene(dir), "8x8", {}, "lighting.vpl_deferred"); });
     EXPECT_NE(e.find("lighting.vpl_deferred does not blur volumes by their velocity"), std::string::npos) << e;
+    const std::string alternatives = e.substr(e.find("render it with "));  // from the registry's blur flags
+    for (const char* able : {"volume.raymarch", "volume.singlescatter", "volume.preint", "volume.adaptive3d", "mesh.pathtrace"})
+        EXPECT_NE(alternatives.find(able), std::string::npos) << e;
+    EXPECT_EQ(alternatives.find("lighting."), std::string::npos) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
