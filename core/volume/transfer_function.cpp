@@ -44,6 +44,8 @@ void TransferFunction::buildTable() {
         const TfPoint p = atS(double(i) / kTableSize);
         table_[i] = {float(p.color[0]), float(p.color[1]), float(p.color[2]), float(p.extinction)};
     }
+    visibleBefore_.assign(kTableSize + 2, 0);
+    for (int i = 0; i <= kTableSize; ++i) visibleBefore_[i + 1] = visibleBefore_[i] + (table_[i].extinction != 0.0f);
     tableScale_ = float(kTableSize / (rangeMax_ - rangeMin_));
     tableOffset_ = float(-rangeMin_ * kTableSize / (rangeMax_ - rangeMin_));
 }
@@ -58,6 +60,17 @@ TfSample TransferFunction::lookup(float value) const {
     const TfSample& b = table_[i + 1];
     return {a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b),
             a.extinction + t * (b.extinction - a.extinction)};
+}
+
+bool TransferFunction::transparentOver(float lo, float hi) const {
+    if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+    if (lo == hi) return lookup(lo).extinction == 0.0f;  // interpolating equal values gives that value exactly
+    const auto entry = [&](float value) {  // lookup's table position, clamped
+        return std::clamp(double(value) * tableScale_ + tableOffset_, 0.0, double(kTableSize));
+    };
+    const int first = std::max(0, int(entry(std::min(lo, hi))) - 1);
+    const int last = std::min(kTableSize, int(entry(std::max(lo, hi))) + 2);
+    return visibleBefore_[last + 1] == visibleBefore_[first];
 }
 
 std::array<double, 2> TransferFunction::extinctionBounds(double lo, double hi) const {

@@ -39,6 +39,12 @@ public:
     // Smallest and largest extinction over the data values [lo, hi]: exact,
     // since extinction is piecewise linear in s (ends and control points).
     std::array<double, 2> extinctionBounds(double lo, double hi) const;
+    // Whether lookup() gives exactly zero extinction for every value in
+    // [lo, hi], and so for any interpolation of values in it: every table
+    // entry its interpolation can read there (one more on each side, for
+    // rounding) is zero; where lo == hi, lookup(lo) itself. False for a
+    // non-finite bound.
+    bool transparentOver(float lo, float hi) const;
 
     // The default for a bare grid: a smoke-like ramp over [0, maxValue].
     static TransferFunction defaultFor(double minValue, double maxValue);
@@ -48,6 +54,7 @@ private:
     double rangeMin_ = 0, rangeMax_ = 1;
     std::vector<TfPoint> points_;
     std::vector<TfSample> table_;
+    std::vector<int> visibleBefore_;  // entries of table_ before i with non-zero extinction
     float tableScale_ = 1, tableOffset_ = 0;
 };
 

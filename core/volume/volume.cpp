@@ -40,9 +40,9 @@ openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid) {
     return copy;
 }
 
-openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume) {
-    if (!volume.emission && !volume.motion) return indexSpaceGrid(*volume.grid);
-    openvdb::FloatGrid::Ptr both = volume.grid->deepCopy();
+openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume, openvdb::FloatGrid::Ptr visible) {
+    if (!volume.emission && !volume.motion) return visible ? visible : indexSpaceGrid(*volume.grid);
+    openvdb::FloatGrid::Ptr both = visible ? visible : volume.grid->deepCopy();
     if (volume.emission) both->tree().topologyUnion(volume.emission->tree());
     if (volume.motion && volume.motionReach > 0)  // one 26-neighbour dilation per voxel reached (Chebyshev <= Euclidean)
         openvdb::tools::dilateActiveValues(both->tree(), int(std::ceil(volume.motionReach)), openvdb::tools::NN_FACE_EDGE_VERTEX,

@@ -78,10 +78,11 @@ openvdb::FloatGrid::ConstPtr placeGrid(const openvdb::FloatGrid::ConstPtr& grid,
 // need uniform voxels, so they march index-space rays through this copy,
 // which works for any affine (anisotropic, rotated, sheared) transform.
 openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid);
-// indexSpaceGrid of the density, whose active voxels also cover the
-// emission's where the volume emits, dilated by the motion's reach where it
-// moves: what an intersector must not skip.
-openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume);
+// indexSpaceGrid of the density (or `visible`, its visibleCells, where
+// given), whose active voxels also cover the emission's where the volume
+// emits, dilated by the motion's reach where it moves: what an intersector
+// must not skip.
+openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume, openvdb::FloatGrid::Ptr visible = nullptr);
 
 // Calls openvdb::initialize() once.
 void initVdb();

@@ -26,11 +26,12 @@
 //   step        distance between samples, in voxel lengths (the speed/accuracy knob)
 //   jitter      random offset of the first sample per ray (banding -> noise)
 //   ert         early ray termination once opacity reaches this (1 = off)
-//   skip_empty  skip regions without active voxels (OpenVDB HDDA on each
-//               grid's index space, so any affine transform works); the
-//               image is unchanged, only fewer samples are taken. auto (the
-//               default) skips where it pays and changes nothing
-//               (emptySpacePays, volume_march.hpp)
+//   skip_empty  skip the cells the transfer function shows nothing of
+//               (core/volume/visible_cells.hpp: min-max space leaping on the
+//               grid's own leaves, OpenVDB HDDA on each grid's index space,
+//               so any affine transform works); the image is unchanged, only
+//               fewer samples are taken. auto (the default) skips where it
+//               pays (emptySpacePays, volume_march.hpp)
 //   offset_pattern  per-pixel offsets of the first sample from a pattern set's
 //               third coordinate: interleaved:4x4 gives the 16 pixels of each
 //               tile 16 different strata of the step (Keller & Heidrich 4.3)
@@ -58,7 +59,6 @@ struct RaymarchParams {
     double step;
     bool jitter;
     float ertOpacity;
-    bool skipEmpty;
     std::string offsetPattern;
 };
 
@@ -68,8 +68,8 @@ std::vector<ParamSpec> raymarchParams() {
         boolParam("jitter", false, "random per-ray offset of the first sample (trades banding for noise)"),
         floatParam("ert", 0.99, 0, 1, "early ray termination once opacity reaches this (1 = never)"),
         enumParam("skip_empty", "auto", {"auto", "true", "false"},
-                  "skip regions without active voxels (OpenVDB HDDA); same image, fewer samples. auto: where the grids are "
-                  "sparse (leaves fill at most 3/4 of their active box) and every value skipped is transparent"),
+                  "skip cells whose values the transfer function shows nothing of (min-max space leaping, OpenVDB HDDA); same "
+                  "image, fewer samples. auto: where the cells left fill at most 3/4 of the active box"),
         stringParam("offset_pattern", "", "offset of the first sample per pixel from a pattern set's third coordinate, "
                                           "e.g. interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: jitter or centre",
                     [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }),
@@ -85,7 +85,7 @@ struct RaymarchCounts {
 class Raymarch final : public Technique {
 public:
     Raymarch(const Scene& scene, const ParamSet& p)
-        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), false, p.getString("offset_pattern")},
+        : params_{p.getFloat("step"), p.getBool("jitter"), float(p.getFloat("ert")), p.getString("offset_pattern")},
           plane_(readImagePlaneOptions(p, PlainSamples::Jittered)) {
         if (params_.jitter && !params_.offsetPattern.empty())
             throw Error("volume.raymarch: jitter=true and offset_pattern both set the first sample's offset; choose one");
@@ -95,8 +95,10 @@ public:
                 throw Error("volume.raymarch: skip_empty=true needs a transfer function that is transparent at the grid's background value "
                             "(volume '" + vol.source + "')");
         requireSurfaceLights(scene, "volume.raymarch");
-        params_.skipEmpty = skip == "true" || (skip == "auto" && emptySpacePays(scene.volumes));
-        if (params_.skipEmpty && !scene.volumes.empty()) skipper_.emplace(scene.volumes);
+        if (!scene.volumes.empty() && (skip == "true" || (skip == "auto" && emptySpaceSkippable(scene.volumes)))) {
+            skipper_.emplace(scene.volumes);
+            if (skip == "auto" && !skipper_->pays()) skipper_.reset();
+        }
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {

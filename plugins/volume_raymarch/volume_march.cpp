@@ -1,5 +1,7 @@
 #include "plugins/volume_raymarch/volume_march.hpp"
 
+#include "core/volume/visible_cells.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,39 +35,42 @@ void addEmitting(RayAccumulator& acc, const TfSample& s, float alpha, const open
 }  // namespace
 
 EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
+    double filled = 0, boxed = 0;
     for (const Volume& v : volumes) {
-        indexGrids_.push_back(occupancyIndexGrid(v));
+        indexGrids_.push_back(occupancyIndexGrid(v, visibleCells(*v.grid, v.tf)));
         // Trilinear support reaches the 26 neighbours of an active voxel; three
         // face-neighbour dilations cover them all (Manhattan distance <= 3).
-        intersectors_.push_back(std::make_unique<VolumeIntersector>(*indexGrids_.back(), 3));
+        // A volume its transfer function hides whole has no intersector (OpenVDB's refuses an empty grid).
+        const bool shows = indexGrids_.back()->tree().activeVoxelCount() > 0;
+        intersectors_.push_back(shows ? std::make_unique<VolumeIntersector>(*indexGrids_.back(), 3) : nullptr);
+        if (v.empty()) continue;
+        const openvdb::FloatTree& tree = indexGrids_.back()->tree();
+        filled += double(tree.leafCount()) * double(openvdb::FloatTree::LeafNodeType::SIZE);
+        auto tiles = tree.cbeginValueOn();
+        tiles.setMaxDepth(openvdb::FloatTree::ValueOnCIter::LEAF_DEPTH - 1);  // tiles, not voxels
+        for (; tiles; ++tiles) filled += double(tiles.getVoxelCount());
+        boxed += double(v.activeBox.volume());
     }
+    fill_ = boxed > 0 ? filled / boxed : 0;
+    pays_ = boxed > 0 && filled <= 0.75 * boxed;
 }
 
 constexpr double kSkipMotionReach = 16;
 
-bool emptySpacePays(const std::vector<Volume>& volumes) {
-    double filled = 0, boxed = 0;
+bool emptySpaceSkippable(const std::vector<Volume>& volumes) {
+    bool any = false;
     for (const Volume& v : volumes) {
         if (v.empty()) continue;
         if (v.motion && v.motionReach > kSkipMotionReach) return false;  // dilating by the reach would cost more than it saves
         const float background = v.grid->background();
-        const auto skippable = [&](float value) { return value == background || !(v.tf.lookup(value).extinction > 0); };
-        if (v.tf.lookup(background).extinction > 0) return false;
-        const openvdb::FloatTree& tree = v.grid->tree();
-        auto tiles = tree.cbeginValueAll();
-        tiles.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);  // tiles, not voxels
-        for (; tiles; ++tiles) {
-            if (tiles.isValueOn()) filled += double(tiles.getVoxelCount());
-            else if (!skippable(*tiles)) return false;
-        }
-        for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
-            filled += double(leaf->SIZE);
-            for (auto off = leaf->cbeginValueOff(); off; ++off)
-                if (!skippable(*off)) return false;
-        }
-        boxed += double(v.activeBox.volume());
+        if (!v.tf.transparentOver(background, background)) return false;
+        any = true;
     }
-    return boxed > 0 && filled <= 0.75 * boxed;
+    return any;
+}
+
+bool emptySpacePays(const std::vector<Volume>& volumes) {
+    return emptySpaceSkippable(volumes) && EmptySpaceSkipper(volumes).pays();
 }
 
 VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototype)
@@ -80,9 +85,9 @@ VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototyp
 }
 
 VolumeMarcher::VolumeMarcher(const Scene& scene, const MarchSettings& settings, const EmptySpaceSkipper* skipper)
-    : settings_(settings) {
+    : settings_(settings), skipping_(skipper != nullptr) {
     for (std::size_t i = 0; i < scene.volumes.size(); ++i)
-        lookups_.emplace_back(scene.volumes[i], skipper ? &skipper->of(i) : nullptr);
+        lookups_.emplace_back(scene.volumes[i], skipper ? skipper->of(i) : nullptr);
 }
 
 // The volumes this ray crosses, their index rays and the march's unit.
@@ -117,11 +122,12 @@ bool VolumeMarcher::cross(const Ray& ray) {
 // skip_empty each volume's occupied intervals (overlapping ones merged).
 void VolumeMarcher::collectIntervals(double uEnd) {
     intervals_.clear();
-    if (!lookups_.front().hdda) {
+    if (!skipping_) {
         intervals_.push_back({u0_, uEnd});
         return;
     }
     for (const Crossing& c : crossings_) {
+        if (!c.lookup->hdda) continue;  // its transfer function hides it whole
         VolumeIntersector& hdda = *c.lookup->hdda;
         if (!hdda.setIndexRay(openvdb::math::Ray<double>(c.ray.origin, c.ray.dir, c.ray.t0, c.ray.t1))) continue;
         double a = 0, b = 0;
@@ -218,9 +224,8 @@ RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offse
     const bool cut = uHit < uEnd_;  // the surface ends the march inside the volumes
     const double kLast = cut ? std::floor((uHit - u0_) / h) : std::numeric_limits<double>::infinity();
     collectIntervals(uEnd_);
-    const bool skipping = lookups_.front().hdda.has_value();
     for (const RayInterval& in : intervals_) {
-        if (skipping && acc.opacity() >= settings_.ertOpacity) return acc;
+        if (skipping_ && acc.opacity() >= settings_.ertOpacity) return acc;
         if (!marchInterval(in, kLast, offset, acc)) return acc;
     }
     if (!cut) return acc;

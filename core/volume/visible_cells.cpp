@@ -1,0 +1,106 @@
+#include "core/volume/visible_cells.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <bitset>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace weft {
+
+namespace {
+
+using Leaf = openvdb::FloatTree::LeafNodeType;
+constexpr int kSpan = 10;  // a leaf's voxels and one more on each side
+constexpr int kCells = 9;  // cells whose low corner lies in [origin - 1, origin + 7]
+using CellBits = std::bitset<kCells * kCells * kCells>;
+
+// A voxel value as the range a cell's interpolation can reach from it: a
+// non-finite value can reach anything (lookup reads NaN as the table's start).
+struct Range {
+    float lo, hi;
+};
+Range rangeOf(float v) {
+    if (std::isfinite(v)) return {v, v};
+    return {-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+}
+Range join(Range a, Range b) { return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)}; }
+
+// The visible cells of one leaf's neighbourhood: the leaf's values read from
+// its buffer, the one-voxel apron around it through the accessor.
+CellBits visibleCellsOf(const Leaf& leaf, const openvdb::FloatGrid::ConstAccessor& acc, const TransferFunction& tf) {
+    static thread_local std::vector<Range> block(kSpan * kSpan * kSpan);
+    const openvdb::Coord o = leaf.origin().offsetBy(-1);
+    const float* data = leaf.buffer().data();
+    Range all = rangeOf(data[0]);
+    for (int x = 0; x < kSpan; ++x)
+        for (int y = 0; y < kSpan; ++y)
+            for (int z = 0; z < kSpan; ++z) {
+                const bool inside = x >= 1 && x <= 8 && y >= 1 && y <= 8 && z >= 1 && z <= 8;
+                const float v = inside ? data[(x - 1) << 6 | (y - 1) << 3 | (z - 1)] : acc.getValue(o.offsetBy(x, y, z));
+                all = join(all, block[(x * kSpan + y) * kSpan + z] = rangeOf(v));
+            }
+    CellBits visible;
+    if (tf.transparentOver(all.lo, all.hi)) return visible;  // the common case far from the features
+    // Each cell's range from its eight corners, one axis at a time.
+    std::array<Range, kSpan * kSpan * kCells> z2;
+    std::array<Range, kSpan * kCells * kCells> y2;
+    for (int x = 0; x < kSpan; ++x)
+        for (int y = 0; y < kSpan; ++y)
+            for (int z = 0; z < kCells; ++z) {
+                const int i = (x * kSpan + y) * kSpan + z;
+                z2[(x * kSpan + y) * kCells + z] = join(block[i], block[i + 1]);
+            }
+    for (int x = 0; x < kSpan; ++x)
+        for (int y = 0; y < kCells; ++y)
+            for (int z = 0; z < kCells; ++z)
+                y2[(x * kCells + y) * kCells + z] = join(z2[(x * kSpan + y) * kCells + z], z2[(x * kSpan + y + 1) * kCells + z]);
+    for (int x = 0; x < kCells; ++x)
+        for (int y = 0; y < kCells; ++y)
+            for (int z = 0; z < kCells; ++z) {
+                const Range r = join(y2[(x * kCells + y) * kCells + z], y2[((x + 1) * kCells + y) * kCells + z]);
+                if (!tf.transparentOver(r.lo, r.hi)) visible.set((x * kCells + y) * kCells + z);
+            }
+    return visible;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr visibleCells(const openvdb::FloatGrid& grid, const TransferFunction& tf) {
+    if (!tf.transparentOver(grid.background(), grid.background())) return nullptr;
+    auto cells = openvdb::FloatGrid::create(0.0f);
+    cells->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
+    openvdb::FloatGrid::Accessor out = cells->getAccessor();
+    // Tiles hold one value: a visible one marks its box and, for the cells
+    // that straddle into it from below, one voxel more on the low sides.
+    auto tiles = grid.tree().cbeginValueAll();
+    tiles.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+    for (; tiles; ++tiles) {
+        const Range r = rangeOf(*tiles);
+        if (tf.transparentOver(r.lo, r.hi)) continue;
+        openvdb::CoordBBox box;
+        tiles.getBoundingBox(box);
+        cells->tree().fill(openvdb::CoordBBox(box.min().offsetBy(-1), box.max()), 1.0f, true);
+    }
+    std::vector<const Leaf*> leaves;
+    leaves.reserve(grid.tree().leafCount());
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
+    std::vector<CellBits> visible(leaves.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+        const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
+        for (std::size_t i = range.begin(); i != range.end(); ++i) visible[i] = visibleCellsOf(*leaves[i], acc, tf);
+    });
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+        if (visible[i].none()) continue;
+        const openvdb::Coord o = leaves[i]->origin().offsetBy(-1);
+        for (int x = 0; x < kCells; ++x)
+            for (int y = 0; y < kCells; ++y)
+                for (int z = 0; z < kCells; ++z)
+                    if (visible[i].test((x * kCells + y) * kCells + z)) out.setValueOn(o.offsetBy(x, y, z), 1.0f);
+    }
+    return cells;
+}
+
+}  // namespace weft
