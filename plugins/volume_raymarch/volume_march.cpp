@@ -51,7 +51,6 @@ EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
         for (; tiles; ++tiles) filled += double(tiles.getVoxelCount());
         boxed += double(v.activeBox.volume());
     }
-    fill_ = boxed > 0 ? filled / boxed : 0;
     pays_ = boxed > 0 && filled <= 0.75 * boxed;
 }
 
