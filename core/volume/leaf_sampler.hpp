@@ -15,6 +15,14 @@
 
 namespace weft {
 
+// std::floor is a libm call on baseline x86-64 (no SSE4.1 round);
+// truncation and a compare are not. Callers' points lie inside grids
+// (index +-2^30), well within int.
+inline int floorToInt(double x) {
+    const int i = int(x);
+    return i - (x < double(i));
+}
+
 template <class GridT>
 class BasicLeafSampler {
 public:
@@ -47,13 +55,6 @@ private:
         Value at(int offset) const { return data ? data[offset] : constant; }
     };
 
-    // std::floor is a libm call on baseline x86-64 (no SSE4.1 round);
-    // truncation and a compare are not. Callers' points lie inside grids
-    // (index +-2^30), well within int.
-    static int floorToInt(double x) {
-        const int i = int(x);
-        return i - (x < double(i));
-    }
     static Value lerp(const Value& a, const Value& b, float w) { return a + (b - a) * w; }
     static Value trilinear(const Value (&v)[2][2][2], float u, float s, float t) {
         return lerp(lerp(lerp(v[0][0][0], v[0][0][1], t), lerp(v[0][1][0], v[0][1][1], t), s),

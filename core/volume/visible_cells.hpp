@@ -10,6 +10,9 @@
 // transparent active voxel is skipped and a visible inactive one is not.
 #include <openvdb/openvdb.h>
 
+#include <climits>
+
+#include "core/volume/leaf_sampler.hpp"
 #include "core/volume/transfer_function.hpp"
 
 namespace weft {
@@ -18,5 +21,34 @@ namespace weft {
 // corners c of the cells that may be visible; null where the background
 // itself is visible, so that nothing may be skipped.
 openvdb::FloatGrid::Ptr visibleCells(const openvdb::FloatGrid& grid, const TransferFunction& tf);
+
+// Whether the cell holding an index-space point is one of visibleCells':
+// a bit of its leaf's value mask (or its tile's state), the last leaf kept,
+// so a march can pass over a hidden cell for a few instructions instead of
+// a lookup (an HDDA leaf interval is mostly hidden cells on thin features).
+// One per thread, like the accessor it reads through.
+class VisibleCellTest {
+public:
+    explicit VisibleCellTest(const openvdb::FloatGrid& cells) : acc_(cells.getConstAccessor()) {}
+    bool operator()(const openvdb::Vec3d& p) {
+        const int ix = floorToInt(p.x()), iy = floorToInt(p.y()), iz = floorToInt(p.z());
+        const openvdb::Coord origin(ix & ~7, iy & ~7, iz & ~7);
+        if (origin != origin_) moveTo(origin);
+        return mask_ ? mask_->isOn((ix & 7) << 6 | (iy & 7) << 3 | (iz & 7)) : tileOn_;
+    }
+
+private:
+    void moveTo(const openvdb::Coord& origin) {
+        origin_ = origin;
+        const auto* leaf = acc_.probeConstLeaf(origin);
+        mask_ = leaf ? &leaf->getValueMask() : nullptr;
+        tileOn_ = !leaf && acc_.isValueOn(origin);
+    }
+
+    openvdb::FloatGrid::ConstAccessor acc_;
+    openvdb::Coord origin_{INT_MAX, INT_MAX, INT_MAX};  // no leaf origin: those are multiples of 8
+    const openvdb::util::NodeMask<3>* mask_ = nullptr;
+    bool tileOn_ = false;
+};
 
 }  // namespace weft

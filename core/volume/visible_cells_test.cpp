@@ -128,5 +128,36 @@ TEST(VisibleCells, EveryLookupOutsideTheMarkedCellsIsTransparent) {
     EXPECT_TRUE(marked(*cells, 4, 4, 4));
 }
 
+// The march's per-sample test reads the marked cells' leaf masks and tile
+// states; it must agree with the grid at every point, negative ones and
+// points inside a whole visible tile included.
+TEST(VisibleCells, TheCellTestAgreesWithTheMarkedGridEverywhere) {
+    initVdb();
+    const TransferFunction ramp(0, 1, {{0, {1, 1, 1}, 0}, {0.5, {1, 1, 1}, 0}, {1, {1, 1, 1}, 1}});
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> value(0.0f, 1.0f);
+    for (int x = -20; x < 12; ++x)
+        for (int y = -9; y < 9; ++y)
+            for (int z = -9; z < 9; ++z) grid->tree().setValue(openvdb::Coord(x, y, z), value(rng));
+    grid->tree().addTile(2, openvdb::Coord(128, 0, 0), 0.9f, true);  // a visible 128^3 tile
+    const openvdb::FloatGrid::Ptr cells = visibleCells(*grid, ramp);
+    ASSERT_TRUE(cells);
+    int tileVoxels = 0;
+    for (auto tile = cells->tree().cbeginValueOn(); tile; ++tile) tileVoxels += !tile.isVoxelValue();
+    EXPECT_GT(tileVoxels, 0);  // the tile stays a tile in the marked grid: the test's tile branch runs
+    VisibleCellTest test(*cells);
+    std::uniform_real_distribution<double> at(-24.0, 270.0), side(-12.0, 12.0);
+    int on = 0;
+    for (int trial = 0; trial < 100000; ++trial) {
+        const openvdb::Vec3d p(trial % 2 ? at(rng) : side(rng) - 6, side(rng), side(rng) + (trial % 3 ? 0 : 6));
+        const bool expected = marked(*cells, int(std::floor(p.x())), int(std::floor(p.y())), int(std::floor(p.z())));
+        ASSERT_EQ(test(p), expected) << p;
+        on += expected;
+    }
+    EXPECT_GT(on, 10000);
+    EXPECT_LT(on, 90000);
+}
+
 }  // namespace
 }  // namespace weft

@@ -37,12 +37,19 @@ void addEmitting(RayAccumulator& acc, const TfSample& s, float alpha, const open
 EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
     double filled = 0, boxed = 0;
     for (const Volume& v : volumes) {
-        indexGrids_.push_back(occupancyIndexGrid(v, visibleCells(*v.grid, v.tf)));
-        // Trilinear support reaches the 26 neighbours of an active voxel; three
-        // face-neighbour dilations cover them all (Manhattan distance <= 3).
+        openvdb::FloatGrid::Ptr visible = visibleCells(*v.grid, v.tf);
+        cells_.push_back(v.emission || v.motion ? nullptr : visible);
+        indexGrids_.push_back(occupancyIndexGrid(v, visible));
+        // A sample lies in the leaf of its cell's low corner, so visible cells
+        // alone need no dilation; one voxel keeps a margin for the HDDA's
+        // rounding at leaf faces. An emission voxel's trilinear support reaches
+        // its 26 neighbours: three face-neighbour dilations cover them all.
         // A volume its transfer function hides whole has no intersector (OpenVDB's refuses an empty grid).
         const bool shows = indexGrids_.back()->tree().activeVoxelCount() > 0;
-        intersectors_.push_back(shows ? std::make_unique<VolumeIntersector>(*indexGrids_.back(), 3) : nullptr);
+        blocks_.push_back(cells_.back() && shows ? VisibleBlocks::of(*cells_.back()) : nullptr);
+        const int dilation = cells_.back() ? 1 : 3;
+        const bool hdda = shows && !blocks_.back();
+        intersectors_.push_back(hdda ? std::make_unique<VolumeIntersector>(*indexGrids_.back(), dilation) : nullptr);
         if (v.empty()) continue;
         const openvdb::FloatTree& tree = indexGrids_.back()->tree();
         filled += double(tree.leafCount()) * double(openvdb::FloatTree::LeafNodeType::SIZE);
@@ -72,7 +79,7 @@ bool emptySpacePays(const std::vector<Volume>& volumes) {
     return emptySpaceSkippable(volumes) && EmptySpaceSkipper(volumes).pays();
 }
 
-VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototype)
+VolumeMarcher::Lookup::Lookup(const Volume& v, const EmptySpaceSkipper* skipper, std::size_t index)
     : volume(v), accessor(v.grid->getConstAccessor()), sampler(accessor, v.grid->transform()),
       voxelLength(v.voxelLength()), uniform(v.grid->transform().hasUniformScale()) {
     if (v.emission) {
@@ -80,13 +87,16 @@ VolumeMarcher::Lookup::Lookup(const Volume& v, const VolumeIntersector* prototyp
         emission.emplace(*emissionAccessor, v.emission->transform());
     }
     emplaceMotion(motion, v);
-    if (prototype) hdda.emplace(*prototype);
+    if (!skipper) return;
+    if (const VolumeIntersector* prototype = skipper->of(index)) hdda.emplace(*prototype);
+    if (const openvdb::FloatGrid* cells = skipper->cells(index)) visible.emplace(*cells);
+    blocks = skipper->blocks(index);
 }
 
 VolumeMarcher::VolumeMarcher(const Scene& scene, const MarchSettings& settings, const EmptySpaceSkipper* skipper)
     : settings_(settings), skipping_(skipper != nullptr) {
     for (std::size_t i = 0; i < scene.volumes.size(); ++i)
-        lookups_.emplace_back(scene.volumes[i], skipper ? skipper->of(i) : nullptr);
+        lookups_.emplace_back(scene.volumes[i], skipper, i);
 }
 
 // The volumes this ray crosses, their index rays and the march's unit.
@@ -126,6 +136,10 @@ void VolumeMarcher::collectIntervals(double uEnd) {
         return;
     }
     for (const Crossing& c : crossings_) {
+        if (c.lookup->blocks) {
+            c.lookup->blocks->intervals(c.ray, c.perU, intervals_);
+            continue;
+        }
         if (!c.lookup->hdda) continue;  // its transfer function hides it whole
         VolumeIntersector& hdda = *c.lookup->hdda;
         if (!hdda.setIndexRay(openvdb::math::Ray<double>(c.ray.origin, c.ray.dir, c.ray.t0, c.ray.t1))) continue;
@@ -146,6 +160,7 @@ void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
         if (t < c.ray.t0 || t >= c.ray.t1) continue;
         Vec3d p = c.ray.at(t);
         if (c.lookup->motion && time_ != 0) p = c.lookup->motion->advected(p, time_);
+        if (c.lookup->visible && !(*c.lookup->visible)(p)) continue;  // zero extinction, no emission: adds nothing
         const float value = c.lookup->sampler.isSample(p);
         ++samples_;
         if (c.lookup->emission) glow += c.lookup->emission->isSample(p) * c.depthScale;
@@ -204,11 +219,19 @@ bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offs
     VolumeSampler& sampler = crossings_.front().lookup->sampler;
     const TransferFunction& tf = crossings_.front().lookup->volume.tf;
     std::int64_t n = 0;
-    const bool more = marchSteps(in, kMax, offset, acc, [&](double u, double h) {
-        const TfSample s = tf.lookup(sampler.isSample(ray.at(u * perU)));
+    const auto sample = [&](const Vec3d& p, double h) {
+        const TfSample s = tf.lookup(sampler.isSample(p));
         ++n;
         acc.add(s, segmentOpacity(s.extinction * depthScale, float(h)));
-    });
+    };
+    bool more;
+    if (auto& visible = crossings_.front().lookup->visible)  // a hidden cell's sample has zero extinction: adds nothing
+        more = marchSteps(in, kMax, offset, acc, [&](double u, double h) {
+            const Vec3d p = ray.at(u * perU);
+            if ((*visible)(p)) sample(p, h);
+        });
+    else
+        more = marchSteps(in, kMax, offset, acc, [&](double u, double h) { sample(ray.at(u * perU), h); });
     samples_ += n;
     return more;
 }

@@ -35,6 +35,8 @@
 #include <vector>
 
 #include "core/volume/leaf_sampler.hpp"
+#include "core/volume/visible_blocks.hpp"
+#include "core/volume/visible_cells.hpp"
 #include "core/volume/volume_bvh.hpp"
 #include "core/volume/volume_motion.hpp"
 #include "core/scene/scene.hpp"
@@ -54,13 +56,22 @@ struct MarchSettings {
 // skip_empty's HDDA masters, one per volume, built once per render on the
 // cells of each grid that its transfer function can show (visibleCells, in
 // index space: OpenVDB's intersector needs uniform voxels); an emitting
-// volume's also hold its emission's active voxels. Every sample skipped has
-// zero extinction and no emission, so the image is the full march's.
+// volume's also hold its emission's active voxels. The HDDA skips whole
+// 8^3 leaves; inside the leaves it marches, a still volume without emission
+// is looked up only in its visible cells (VisibleCellTest: on the aneurism at
+// step 1, 4.3 M lookups become 0.3 M). Every sample skipped has zero
+// extinction and no emission, so the image is the full march's.
 class EmptySpaceSkipper {
 public:
     explicit EmptySpaceSkipper(const std::vector<Volume>& volumes);
-    // Null where the volume's transfer function hides all of it.
+    // Null where the volume's transfer function hides all of it, or its blocks replace it.
     const VolumeIntersector* of(std::size_t volume) const { return intersectors_[volume].get(); }
+    // The volume's visible cells where they alone decide what to march (no
+    // emission, no motion); null otherwise.
+    const openvdb::FloatGrid* cells(std::size_t volume) const { return cells_[volume].get(); }
+    // The blocks of those cells where their array is small enough (it then
+    // replaces the HDDA); null otherwise.
+    const VisibleBlocks* blocks(std::size_t volume) const { return blocks_[volume].get(); }
     // Whether skipping pays: the leaves and active tiles left to march fill
     // at most 3/4 of the volumes' active boxes (raymarch, one thread,
     // measured on whole grids: the aneurism, 0.31 full, 1.9x faster; the
@@ -70,6 +81,8 @@ public:
 private:
     std::vector<openvdb::FloatGrid::ConstPtr> indexGrids_;  // the intersectors point into these
     std::vector<std::unique_ptr<VolumeIntersector>> intersectors_;
+    std::vector<openvdb::FloatGrid::ConstPtr> cells_;
+    std::vector<std::unique_ptr<VisibleBlocks>> blocks_;
     bool pays_ = false;
 };
 
@@ -102,9 +115,11 @@ private:
         std::optional<Vec3LeafSampler> emission;  // through emissionAccessor
         std::optional<MotionLookup> motion;
         std::optional<VolumeIntersector> hdda;
+        std::optional<VisibleCellTest> visible;  // skip_empty's cells, where they decide alone
+        const VisibleBlocks* blocks = nullptr;   // and their blocks, where they replace the HDDA
         double voxelLength;
         bool uniform;  // uniform voxels: index units are voxel lengths exactly
-        Lookup(const Volume& v, const VolumeIntersector* prototype);
+        Lookup(const Volume& v, const EmptySpaceSkipper* skipper, std::size_t index);
     };
     struct Crossing {  // one volume on the current ray
         Lookup* lookup;

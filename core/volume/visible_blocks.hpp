@@ -1,0 +1,53 @@
+#pragma once
+// visibleCells' leaves as a dense array of 8^3 blocks over their bounding
+// box, each holding the box of its visible cells. A ray walks the blocks in
+// order (Amanatides & Woo's grid traversal, through groups of 4^3 blocks
+// first, so that empty groups take one step) and is marched only where it
+// crosses a block's visible box: array reads instead of a descent of
+// OpenVDB's tree (its HDDA), and a ray through a leaf that shows a thin
+// vessel marches the few cells around it, not all eight voxels.
+#include <openvdb/openvdb.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/volume/volume_ray.hpp"
+
+namespace weft {
+
+class VisibleBlocks {
+public:
+    // Boxes are widened by this many voxels, so a sample that rounding puts
+    // on a box's face is still marched (the cell test then decides).
+    static constexpr double kMargin = 1e-3;
+
+    // Null where `cells` (visibleCells' grid) has no visible cell, or the
+    // array would hold more than maxBlocks blocks (a sparse grid spread wide:
+    // the HDDA serves it).
+    static std::unique_ptr<VisibleBlocks> of(const openvdb::FloatGrid& cells, std::size_t maxBlocks = std::size_t(1) << 22);
+
+    // Appends the stretches of `ray` (within [ray.t0, ray.t1]) that cross a
+    // visible box, in order, overlapping ones joined, each divided by
+    // `perU` (index units per march unit).
+    void intervals(const IndexRay& ray, double perU, std::vector<RayInterval>& out) const;
+
+    std::size_t blockCount() const { return boxes_.size(); }
+    std::size_t visibleBlockCount() const;
+
+private:
+    struct Box {  // voxel offsets in the block; lo > hi: no visible cell
+        std::uint8_t lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
+        bool empty() const { return lo[0] > hi[0]; }
+    };
+    std::size_t indexOf(int i, int j, int k) const { return (std::size_t(i) * dims_[1] + j) * dims_[2] + k; }
+
+    static constexpr int kGroup = 4;  // blocks per group edge: a ray crosses 32^3-voxel groups first
+
+    openvdb::Coord origin_;  // low corner of block (0, 0, 0), a multiple of 8
+    int dims_[3] = {0, 0, 0}, groups_[3] = {0, 0, 0};
+    std::vector<Box> boxes_;
+    std::vector<std::uint8_t> groupVisible_;  // some block of the group shows something
+};
+
+}  // namespace weft

@@ -1,0 +1,93 @@
+// VisibleBlocks hands a march every stretch of a ray that crosses a visible
+// cell, in order and without overlaps, and little else: a sample it leaves
+// out would lose a visible lookup, one it hands twice would count twice.
+#include "core/volume/visible_blocks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/volume/visible_cells.hpp"
+#include "core/volume/volume.hpp"
+
+namespace weft {
+namespace {
+
+openvdb::FloatGrid::Ptr scatteredCells(std::mt19937& rng) {
+    auto cells = openvdb::FloatGrid::create(0.0f);
+    std::uniform_int_distribution<int> at(-30, 40);
+    for (int n = 0; n < 800; ++n) cells->tree().setValueOn(openvdb::Coord(at(rng), at(rng), at(rng)), 1.0f);
+    cells->tree().addTile(1, openvdb::Coord(128, 0, 0), 1.0f, true);  // a whole visible 128^3 node
+    return cells;
+}
+
+IndexRay rayThrough(const Vec3d& from, const Vec3d& to) {
+    IndexRay r;
+    r.origin = from;
+    r.dir = (to - from).unitSafe();
+    r.t0 = 0, r.t1 = (to - from).length();
+    return r;
+}
+
+TEST(VisibleBlocks, EveryVisibleCellARayCrossesIsInOneOrderedStretch) {
+    initVdb();
+    std::mt19937 rng(17);
+    const openvdb::FloatGrid::Ptr cells = scatteredCells(rng);
+    const auto blocks = VisibleBlocks::of(*cells);
+    ASSERT_TRUE(blocks);
+    EXPECT_GT(blocks->visibleBlockCount(), 40u);
+    EXPECT_LT(blocks->visibleBlockCount(), blocks->blockCount() / 2);
+    const openvdb::FloatGrid::ConstAccessor acc = cells->getConstAccessor();
+    std::uniform_real_distribution<double> end(-40.0, 280.0), side(-40.0, 50.0);
+    std::vector<RayInterval> out;
+    long inside = 0, visibleSamples = 0, marched = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        Vec3d a(side(rng), side(rng), side(rng)), b(end(rng), side(rng), side(rng));
+        if (trial % 4 == 0) b.y() = a.y(), b.z() = a.z();  // along an axis: zero direction components
+        if (trial % 8 == 1) a = Vec3d(-20.5, 3.0, 3.0), b = Vec3d(40.5, 3.0, 3.0);  // on a block face's plane (y, z integer)
+        const IndexRay ray = rayThrough(a, b);
+        const double perU = trial % 3 ? 1.0 : 0.5;
+        out.clear();
+        blocks->intervals(ray, perU, out);
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            ASSERT_LE(out[i].lo, out[i].hi);
+            if (i > 0) {
+                ASSERT_GT(out[i].lo, out[i - 1].hi);  // ordered, disjoint
+            }
+            EXPECT_GE(out[i].lo * perU, ray.t0 - 1e-9);
+            EXPECT_LE(out[i].hi * perU, ray.t1 + 1e-9);
+            marched += 1;
+        }
+        for (double t = ray.t0; t < ray.t1; t += 0.01) {
+            const Vec3d p = ray.at(t);
+            const openvdb::Coord c(int(std::floor(p.x())), int(std::floor(p.y())), int(std::floor(p.z())));
+            bool covered = false;
+            for (const RayInterval& in : out) covered = covered || (t >= in.lo * perU && t <= in.hi * perU);
+            inside += covered;
+            if (!acc.isValueOn(c)) continue;
+            ++visibleSamples;
+            ASSERT_TRUE(covered) << "trial " << trial << " t " << t << " cell " << c;
+        }
+    }
+    EXPECT_GT(visibleSamples, 3000);
+    EXPECT_GT(marched, 100);
+    EXPECT_LT(inside, 40 * visibleSamples);  // the boxes are tight: the scattered cells are not marched as whole blocks
+}
+
+TEST(VisibleBlocks, NothingVisibleOrTooManyBlocksLeavesItToTheHdda) {
+    initVdb();
+    auto none = openvdb::FloatGrid::create(0.0f);
+    EXPECT_FALSE(VisibleBlocks::of(*none));
+    auto wide = openvdb::FloatGrid::create(0.0f);
+    wide->tree().setValueOn(openvdb::Coord(0, 0, 0), 1.0f);
+    wide->tree().setValueOn(openvdb::Coord(800, 800, 800), 1.0f);  // 101^3 blocks
+    EXPECT_FALSE(VisibleBlocks::of(*wide, 1000000));
+    const auto fits = VisibleBlocks::of(*wide, 2000000);
+    ASSERT_TRUE(fits);
+    EXPECT_EQ(fits->blockCount(), 101u * 101u * 101u);
+    EXPECT_EQ(fits->visibleBlockCount(), 2u);
+}
+
+}  // namespace
+}  // namespace weft
