@@ -5,16 +5,11 @@
 
 namespace weft {
 
-Ray Camera::generate(double px, double py, int width, int height) const {
-    const Vec3d forward = (target - eye).unitSafe();
-    const Vec3d right = forward.cross(up).unitSafe();
-    const Vec3d trueUp = right.cross(forward);
-    const double tanHalf = std::tan(0.5 * fovY * M_PI / 180.0);
-    const double aspect = double(width) / double(height);
-    const double sx = (2.0 * px / width - 1.0) * tanHalf * aspect;
-    const double sy = (1.0 - 2.0 * py / height) * tanHalf;
-    return {eye, (forward + right * sx + trueUp * sy).unitSafe()};
-}
+Ray Camera::generate(double px, double py, int width, int height) const { return CameraRays(*this, width, height).at(px, py); }
+
+CameraRays::CameraRays(const Camera& c, int width, int height)
+    : eye_(c.eye), forward_((c.target - c.eye).unitSafe()), right_(forward_.cross(c.up).unitSafe()), up_(right_.cross(forward_)),
+      tanHalf_(std::tan(0.5 * c.fovY * M_PI / 180.0)), aspect_(double(width) / double(height)), width_(width), height_(height) {}
 
 Camera lerpCamera(const Camera& a, const Camera& b, double t) {
     Camera c;

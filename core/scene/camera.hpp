@@ -36,6 +36,23 @@ struct Camera {
     static Camera framing(const BBoxd& box, double fovY, double aspect);
 };
 
+// A camera's rays for one image size with its frame (axes, tangent) built
+// once: Camera::generate per pixel without the per-ray normalisations and
+// tangent, the same rays bit for bit (generate is made of it).
+class CameraRays {
+public:
+    CameraRays(const Camera& camera, int width, int height);
+    Ray at(double px, double py) const {
+        const double sx = (2.0 * px / width_ - 1.0) * tanHalf_ * aspect_;
+        const double sy = (1.0 - 2.0 * py / height_) * tanHalf_;
+        return {eye_, (forward_ + right_ * sx + up_ * sy).unitSafe()};
+    }
+
+private:
+    Vec3d eye_, forward_, right_, up_;
+    double tanHalf_, aspect_, width_, height_;
+};
+
 // eye, target, up and field of view interpolated linearly (t in [0, 1]).
 Camera lerpCamera(const Camera& a, const Camera& b, double t);
 

@@ -120,13 +120,16 @@ public:
             const MeshAccel* accel;
             float eps;
             VolumeMarcher marcher;  // built in place, never copied
+            std::optional<CameraRays> rays;  // the camera's frame, where it holds all frame long
             RaymarchCounts counts;
 
             Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o,
                    const MeshAccel* a, float e, const MarchSettings& m)
-                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_ ? &*r.skipper_ : nullptr) {}
+                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_ ? &*r.skipper_ : nullptr) {
+                if (scene.cameraPath.keys.size() < 2 || scene.shutter.instant()) rays.emplace(scene.camera, s.width, s.height);
+            }
             Rgba operator()(const CameraSample& c) {
-                const Ray ray = scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
+                const Ray ray = rays ? rays->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
                 float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.5f;
                 if (offsets) offset = offsets->sample(c.px, c.py, int(c.index % std::uint32_t(s.spp))).t;
                 ++counts.rays;
