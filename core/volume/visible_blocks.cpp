@@ -34,37 +34,6 @@ void clipToBox(const WalkRay& ray, const Vec3d& lo, const Vec3d& hi, double& t0,
     }
 }
 
-// Visits the cells (edge `size`, cell 0's low corner at lo) with indices in
-// [first, last] that `ray` crosses within [tIn, tOut], in order, as
-// visit(index, tEnter, tExit): Amanatides & Woo, stepping the axis whose
-// face comes first.
-template <class Visit>
-void walkCells(const WalkRay& ray, const Vec3d& lo, double size, const int (&first)[3], const int (&last)[3], double tIn,
-               double tOut, Visit&& visit) {
-    const Vec3d start = ray.at(tIn) - lo;
-    int idx[3], step[3];
-    double tNext[3], tDelta[3];
-    for (int a = 0; a < 3; ++a) {
-        idx[a] = std::clamp(int(std::floor(start[a] / size)), first[a], last[a]);
-        const double d = ray.dir[a];
-        step[a] = d > 0 ? 1 : d < 0 ? -1 : 0;
-        const double face = lo[a] + size * (idx[a] + (d > 0));
-        tNext[a] = d != 0 ? (face - ray.origin[a]) * ray.inv[a] : std::numeric_limits<double>::infinity();
-        tDelta[a] = d != 0 ? size * std::abs(ray.inv[a]) : std::numeric_limits<double>::infinity();
-    }
-    double tEnter = tIn;
-    for (;;) {
-        const int a = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
-        const double tExit = std::min(tNext[a], tOut);
-        visit(idx, tEnter, tExit);
-        if (tNext[a] > tOut) return;
-        idx[a] += step[a];
-        if (idx[a] < first[a] || idx[a] > last[a]) return;
-        tEnter = tNext[a];
-        tNext[a] += tDelta[a];
-    }
-}
-
 }  // namespace
 
 std::unique_ptr<VisibleBlocks> VisibleBlocks::of(const openvdb::FloatGrid& cells, std::size_t maxBlocks) {
@@ -106,18 +75,40 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::of(const openvdb::FloatGrid& cells
                     for (int a = 0; a < 3; ++a) b.lo[a] = 0, b.hi[a] = 7;
                 }
     }
-    for (int a = 0; a < 3; ++a) blocks->groups_[a] = (blocks->dims_[a] + kGroup - 1) / kGroup;
-    blocks->groupVisible_.assign(std::size_t(blocks->groups_[0]) * blocks->groups_[1] * blocks->groups_[2], 0);
-    for (int i = 0; i < blocks->dims_[0]; ++i)
-        for (int j = 0; j < blocks->dims_[1]; ++j)
-            for (int k = 0; k < blocks->dims_[2]; ++k)
-                if (!blocks->boxes_[blocks->indexOf(i, j, k)].empty())
-                    blocks->groupVisible_[(std::size_t(i / kGroup) * blocks->groups_[1] + j / kGroup) * blocks->groups_[2] + k / kGroup] = 1;
+    blocks->measureClearance();
     return blocks;
 }
 
 std::size_t VisibleBlocks::visibleBlockCount() const {
     return std::size_t(std::count_if(boxes_.begin(), boxes_.end(), [](const Box& b) { return !b.empty(); }));
+}
+
+// Chessboard distance in blocks to the nearest visible block: a two-pass
+// chamfer over the 26 neighbours, exact for this metric.
+void VisibleBlocks::measureClearance() {
+    constexpr int kFar = 255;
+    clearance_.assign(boxes_.size(), kFar);
+    for (std::size_t i = 0; i < boxes_.size(); ++i)
+        if (!boxes_[i].empty()) clearance_[i] = 0;
+    const auto pass = [&](int from, int sign) {  // sign +1: raster order, the 13 neighbours before; -1: after
+        for (int i = from == 0 ? 0 : dims_[0] - 1; i >= 0 && i < dims_[0]; i += sign)
+            for (int j = from == 0 ? 0 : dims_[1] - 1; j >= 0 && j < dims_[1]; j += sign)
+                for (int k = from == 0 ? 0 : dims_[2] - 1; k >= 0 && k < dims_[2]; k += sign) {
+                    int best = clearance_[indexOf(i, j, k)];
+                    for (int di = -1; di <= 1; ++di)
+                        for (int dj = -1; dj <= 1; ++dj)
+                            for (int dk = -1; dk <= 1; ++dk) {
+                                const int order = (di * 3 + dj) * 3 + dk;  // neighbours earlier in the pass's order
+                                if (order * sign >= 0) continue;
+                                const int ni = i + di, nj = j + dj, nk = k + dk;
+                                if (ni < 0 || nj < 0 || nk < 0 || ni >= dims_[0] || nj >= dims_[1] || nk >= dims_[2]) continue;
+                                best = std::min(best, clearance_[indexOf(ni, nj, nk)] + 1);
+                            }
+                    clearance_[indexOf(i, j, k)] = std::uint8_t(best);
+                }
+    };
+    pass(0, 1);
+    pass(1, -1);
 }
 
 void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector<RayInterval>& out) const {
@@ -127,9 +118,7 @@ void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector
     clipToBox(ray, lo, lo + Vec3d(dims_[0], dims_[1], dims_[2]) * 8.0, tIn, tOut);
     if (!(tIn <= tOut)) return;
     const std::size_t first = out.size();
-    const auto visitBlock = [&](const int (&b)[3], double, double) {
-        const Box& box = boxes_[indexOf(b[0], b[1], b[2])];
-        if (box.empty()) return;
+    const auto visitBlock = [&](const int (&b)[3], const Box& box) {
         const Vec3d corner = lo + Vec3d(b[0], b[1], b[2]) * 8.0;
         double t0 = tIn, t1 = tOut;  // a sample in cell c lies in [c, c + 1): the box's far faces are hi + 1
         clipToBox(ray, corner + Vec3d(box.lo[0], box.lo[1], box.lo[2]) - Vec3d(kMargin),
@@ -141,14 +130,40 @@ void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector
         else
             out.push_back(in);
     };
-    // Groups of kGroup^3 blocks with nothing visible are crossed in one step.
-    const int none[3] = {0, 0, 0}, lastGroup[3] = {groups_[0] - 1, groups_[1] - 1, groups_[2] - 1};
-    walkCells(ray, lo, 8.0 * kGroup, none, lastGroup, tIn, tOut, [&](const int (&g)[3], double t0, double t1) {
-        if (!groupVisible_[(std::size_t(g[0]) * groups_[1] + g[1]) * groups_[2] + g[2]]) return;
-        int from[3], to[3];
-        for (int a = 0; a < 3; ++a) from[a] = g[a] * kGroup, to[a] = std::min(from[a] + kGroup, dims_[a]) - 1;
-        walkCells(ray, lo, 8.0, from, to, t0, t1, visitBlock);
-    });
+    // Amanatides & Woo from block to block, stepping the axis whose face
+    // comes first. From a block whose clearance is c >= 3, the ray jumps
+    // (c - 1) * 8 voxels ahead: every point within that (chessboard)
+    // distance lies in a block nearer than c, so none it passes is visible.
+    double t = tIn;
+    while (t <= tOut) {
+        const Vec3d start = ray.at(t) - lo;
+        int idx[3], step[3];
+        double tNext[3], tDelta[3];
+        for (int a = 0; a < 3; ++a) {
+            idx[a] = std::clamp(int(std::floor(start[a] * 0.125)), 0, dims_[a] - 1);
+            const double d = ray.dir[a];
+            step[a] = d > 0 ? 1 : d < 0 ? -1 : 0;
+            tNext[a] = d != 0 ? (lo[a] + 8.0 * (idx[a] + (d > 0)) - ray.origin[a]) * ray.inv[a] : std::numeric_limits<double>::infinity();
+            tDelta[a] = d != 0 ? 8.0 * std::abs(ray.inv[a]) : std::numeric_limits<double>::infinity();
+        }
+        double tEnter = t;
+        t = std::numeric_limits<double>::infinity();  // no jump: the walk below ends the ray
+        for (;;) {
+            const std::size_t i = indexOf(idx[0], idx[1], idx[2]);
+            const int clear = clearance_[i];
+            if (clear >= 3) {
+                t = tEnter + (clear - 1) * 8.0;
+                break;
+            }
+            if (clear == 0) visitBlock(idx, boxes_[i]);
+            const int a = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
+            if (tNext[a] > tOut) break;
+            idx[a] += step[a];
+            if (idx[a] < 0 || idx[a] >= dims_[a]) break;
+            tEnter = tNext[a];
+            tNext[a] += tDelta[a];
+        }
+    }
 }
 
 }  // namespace weft

@@ -1,8 +1,9 @@
 #pragma once
 // visibleCells' leaves as a dense array of 8^3 blocks over their bounding
 // box, each holding the box of its visible cells. A ray walks the blocks in
-// order (Amanatides & Woo's grid traversal, through groups of 4^3 blocks
-// first, so that empty groups take one step) and is marched only where it
+// order (Amanatides & Woo's grid traversal, leaping over empty space by
+// each block's distance to the nearest visible one: proximity clouds,
+// Cohen & Sheffer 1994) and is marched only where it
 // crosses a block's visible box: array reads instead of a descent of
 // OpenVDB's tree (its HDDA), and a ray through a leaf that shows a thin
 // vessel marches the few cells around it, not all eight voxels.
@@ -40,14 +41,13 @@ private:
         std::uint8_t lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
         bool empty() const { return lo[0] > hi[0]; }
     };
+    void measureClearance();
     std::size_t indexOf(int i, int j, int k) const { return (std::size_t(i) * dims_[1] + j) * dims_[2] + k; }
 
-    static constexpr int kGroup = 4;  // blocks per group edge: a ray crosses 32^3-voxel groups first
-
     openvdb::Coord origin_;  // low corner of block (0, 0, 0), a multiple of 8
-    int dims_[3] = {0, 0, 0}, groups_[3] = {0, 0, 0};
+    int dims_[3] = {0, 0, 0};
     std::vector<Box> boxes_;
-    std::vector<std::uint8_t> groupVisible_;  // some block of the group shows something
+    std::vector<std::uint8_t> clearance_;  // chessboard distance in blocks to a visible block, at most 255
 };
 
 }  // namespace weft

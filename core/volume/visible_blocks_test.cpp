@@ -75,6 +75,36 @@ TEST(VisibleBlocks, EveryVisibleCellARayCrossesIsInOneOrderedStretch) {
     EXPECT_LT(inside, 40 * visibleSamples);  // the boxes are tight: the scattered cells are not marched as whole blocks
 }
 
+// Far from anything visible a ray leaps over empty blocks by their
+// distance to the nearest visible one; it must land short of every visible
+// cell, however the ray meets them.
+TEST(VisibleBlocks, LeapsOverEmptySpaceButNotOverAVisibleCell) {
+    initVdb();
+    auto cells = openvdb::FloatGrid::create(0.0f);
+    const openvdb::Coord far[] = {{0, 0, 0}, {203, 5, 3}, {100, 180, 7}, {60, 61, 230}, {231, 201, 190}};
+    for (const openvdb::Coord& c : far) cells->tree().setValueOn(c, 1.0f);
+    const auto blocks = VisibleBlocks::of(*cells);
+    ASSERT_TRUE(blocks);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> jitter(0.02, 0.98), outside(-20.0, 260.0);
+    std::vector<RayInterval> out;
+    for (int trial = 0; trial < 2000; ++trial) {
+        // Through a point inside one of the cells, from and to anywhere around the grid.
+        const openvdb::Coord c = far[trial % 5];
+        const Vec3d through = c.asVec3d() + Vec3d(jitter(rng), jitter(rng), jitter(rng));
+        const Vec3d from(outside(rng), outside(rng), outside(rng));
+        IndexRay ray = rayThrough(from, through);
+        const double tCell = (through - from).length();
+        ray.t1 = tCell + 300.0;
+        out.clear();
+        blocks->intervals(ray, 1.0, out);
+        bool covered = false;
+        for (const RayInterval& in : out) covered = covered || (tCell >= in.lo && tCell <= in.hi);
+        ASSERT_TRUE(covered) << "trial " << trial << " cell " << c << " from " << from;
+        ASSERT_LE(out.size(), 5u);
+    }
+}
+
 TEST(VisibleBlocks, NothingVisibleOrTooManyBlocksLeavesItToTheHdda) {
     initVdb();
     auto none = openvdb::FloatGrid::create(0.0f);
