@@ -118,8 +118,8 @@ void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector
     clipToBox(ray, lo, lo + Vec3d(dims_[0], dims_[1], dims_[2]) * 8.0, tIn, tOut);
     if (!(tIn <= tOut)) return;
     const std::size_t first = out.size();
-    const auto visitBlock = [&](const int (&b)[3], const Box& box) {
-        const Vec3d corner = lo + Vec3d(b[0], b[1], b[2]) * 8.0;
+    const auto visitBlock = [&](int bx, int by, int bz, const Box& box) {
+        const Vec3d corner = lo + Vec3d(bx, by, bz) * 8.0;
         double t0 = tIn, t1 = tOut;  // a sample in cell c lies in [c, c + 1): the box's far faces are hi + 1
         clipToBox(ray, corner + Vec3d(box.lo[0], box.lo[1], box.lo[2]) - Vec3d(kMargin),
                   corner + Vec3d(box.hi[0] + 1.0, box.hi[1] + 1.0, box.hi[2] + 1.0) + Vec3d(kMargin), t0, t1);
@@ -130,38 +130,58 @@ void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector
         else
             out.push_back(in);
     };
+    // Per axis: the step in block coordinates and in the flat array, the
+    // parameter between two faces, and how far the array reaches.
+    const std::ptrdiff_t stride[3] = {std::ptrdiff_t(dims_[1]) * dims_[2], dims_[2], 1};
+    int step[3];
+    std::ptrdiff_t flatStep[3];
+    double tDelta[3];
+    for (int a = 0; a < 3; ++a) {
+        const double d = ray.dir[a];
+        step[a] = d > 0 ? 1 : d < 0 ? -1 : 0;
+        flatStep[a] = step[a] * stride[a];
+        tDelta[a] = d != 0 ? 8.0 * std::abs(ray.inv[a]) : std::numeric_limits<double>::infinity();
+    }
     // Amanatides & Woo from block to block, stepping the axis whose face
-    // comes first. From a block whose clearance is c >= 3, the ray jumps
-    // (c - 1) * 8 voxels ahead: every point within that (chessboard)
-    // distance lies in a block nearer than c, so none it passes is visible.
+    // comes first; scalars, not arrays, so the loop stays in registers.
+    // From a block whose clearance is c >= 3, the ray jumps (c - 1) * 8
+    // voxels ahead: every point within that (chessboard) distance lies in
+    // a block nearer than c, so none it passes is visible.
     double t = tIn;
     while (t <= tOut) {
         const Vec3d start = ray.at(t) - lo;
-        int idx[3], step[3];
-        double tNext[3], tDelta[3];
+        int idx[3];
+        double tNext[3];
         for (int a = 0; a < 3; ++a) {
             idx[a] = std::clamp(int(std::floor(start[a] * 0.125)), 0, dims_[a] - 1);
-            const double d = ray.dir[a];
-            step[a] = d > 0 ? 1 : d < 0 ? -1 : 0;
-            tNext[a] = d != 0 ? (lo[a] + 8.0 * (idx[a] + (d > 0)) - ray.origin[a]) * ray.inv[a] : std::numeric_limits<double>::infinity();
-            tDelta[a] = d != 0 ? 8.0 * std::abs(ray.inv[a]) : std::numeric_limits<double>::infinity();
+            tNext[a] = step[a] != 0 ? (lo[a] + 8.0 * (idx[a] + (step[a] > 0)) - ray.origin[a]) * ray.inv[a]
+                                    : std::numeric_limits<double>::infinity();
         }
+        int bx = idx[0], by = idx[1], bz = idx[2];
+        double tx = tNext[0], ty = tNext[1], tz = tNext[2];
+        std::ptrdiff_t i = std::ptrdiff_t(indexOf(bx, by, bz));
         double tEnter = t;
         t = std::numeric_limits<double>::infinity();  // no jump: the walk below ends the ray
         for (;;) {
-            const std::size_t i = indexOf(idx[0], idx[1], idx[2]);
-            const int clear = clearance_[i];
+            const int clear = clearance_[std::size_t(i)];
             if (clear >= 3) {
                 t = tEnter + (clear - 1) * 8.0;
                 break;
             }
-            if (clear == 0) visitBlock(idx, boxes_[i]);
-            const int a = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
-            if (tNext[a] > tOut) break;
-            idx[a] += step[a];
-            if (idx[a] < 0 || idx[a] >= dims_[a]) break;
-            tEnter = tNext[a];
-            tNext[a] += tDelta[a];
+            if (clear == 0) visitBlock(bx, by, bz, boxes_[std::size_t(i)]);
+            if (tx < ty && tx < tz) {
+                bx += step[0];
+                if (tx > tOut || unsigned(bx) >= unsigned(dims_[0])) break;
+                i += flatStep[0], tEnter = tx, tx += tDelta[0];
+            } else if (ty < tz) {
+                by += step[1];
+                if (ty > tOut || unsigned(by) >= unsigned(dims_[1])) break;
+                i += flatStep[1], tEnter = ty, ty += tDelta[1];
+            } else {
+                bz += step[2];
+                if (tz > tOut || unsigned(bz) >= unsigned(dims_[2])) break;
+                i += flatStep[2], tEnter = tz, tz += tDelta[2];
+            }
         }
     }
 }
