@@ -40,6 +40,7 @@ from benchlib import ROOT, WEFT, diff_all, headline, prepare_aneurism, run  # no
 WEFT_SETTINGS = [  # (technique, --set values), at spp 1: every volume technique's default
     ("volume.raymarch", ["step=1"]), ("volume.raymarch", ["step=1", "skip_empty=true"]),
     ("volume.preint", []), ("volume.adaptive3d", ["oracle=gradient_alpha"]),
+    ("volume.raymarch", ["step=0.8", "skip_empty=true"]),
     ("volume.raymarch", ["step=0.5", "skip_empty=true"]), ("volume.preint", ["spacing=0.5"]),
     ("volume.adaptive3d", ["oracle=gradient_alpha", "spacing=0.5"]),
 ]

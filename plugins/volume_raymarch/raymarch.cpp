@@ -68,7 +68,8 @@ std::vector<ParamSpec> raymarchParams() {
         boolParam("jitter", false, "random per-ray offset of the first sample (trades banding for noise)"),
         floatParam("ert", 0.99, 0, 1, "early ray termination once opacity reaches this (1 = never)"),
         enumParam("skip_empty", "auto", {"auto", "true", "false"},
-                  "skip cells whose values the transfer function shows nothing of (min-max space leaping, OpenVDB HDDA); same "
+                  "skip cells whose values the transfer function shows nothing of (min-max space leaping over 8^3 blocks, "
+                  "OpenVDB HDDA where the grid spreads wide or moves); same "
                   "image, fewer samples. auto: where the cells left fill at most 3/4 of the active box"),
         stringParam("offset_pattern", "", "offset of the first sample per pixel from a pattern set's third coordinate, "
                                           "e.g. interleaved:4x4,basis=jittered (Keller & Heidrich 4.3); empty: jitter or centre",
