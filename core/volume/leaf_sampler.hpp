@@ -13,6 +13,8 @@
 
 #include <openvdb/openvdb.h>
 
+#include "core/volume/dense_copy.hpp"
+
 namespace weft {
 
 // std::floor is a libm call on baseline x86-64 (no SSE4.1 round);
@@ -36,14 +38,21 @@ public:
     Value isSample(const openvdb::Vec3d& p) {
         const int ix = floorToInt(p.x()), iy = floorToInt(p.y()), iz = floorToInt(p.z());
         const double fx = ix, fy = iy, fz = iz;
+        Value v[2][2][2];
+        if (dense_ && dense_->holdsCell(ix, iy, iz)) {
+            dense_->cell(ix, iy, iz, v);
+            return trilinear(v, float(p.x() - fx), float(p.y() - fy), float(p.z() - fz));
+        }
         const openvdb::Coord origin(ix & ~7, iy & ~7, iz & ~7);
         if (origin != origin_) moveTo(origin);
         const int lx = ix & 7, ly = iy & 7, lz = iz & 7;
-        Value v[2][2][2];
         if (lx != 7 && ly != 7 && lz != 7) fromLeaf(lx << 6 | ly << 3 | lz, v);
         else fromBlock(lx, ly, lz, v);  // the cell straddles leaves
         return trilinear(v, float(p.x() - fx), float(p.y() - fy), float(p.z() - fz));
     }
+    // Reads cells inside `dense` (the same grid's copy; it must outlive the
+    // sampler) from it, the others from the leaves.
+    void useDense(const DenseCopy<GridT>* dense) { dense_ = dense; }
     // At a world-space point.
     Value wsSample(const openvdb::Vec3d& p) { return isSample(xf_->worldToIndex(p)); }
 
@@ -105,6 +114,7 @@ private:
 
     const Accessor* acc_;
     const openvdb::math::Transform* xf_;
+    const DenseCopy<GridT>* dense_ = nullptr;
     openvdb::Coord origin_{INT_MAX, INT_MAX, INT_MAX};  // no leaf origin: those are multiples of 8
     Region region_[8];                                 // the leaf at origin_ + 8 (dx, dy, dz), j = dx<<2 | dy<<1 | dz
     unsigned probed_ = 0;

@@ -106,3 +106,54 @@ TEST(LeafSampler, WorldSamplesFollowTheTransform) {
 
 }  // namespace
 }  // namespace weft
+
+namespace weft {
+namespace {
+
+// A dense copy changes where the eight values come from, not what they
+// are: lookups through it equal the leaves' bit for bit, inside the copy,
+// on its edges (cells half in it go to the leaves), and outside it.
+TEST(DenseCopy, LookupsThroughItEqualTheLeavesBitForBit) {
+    initVdb();
+    auto grid = openvdb::FloatGrid::create(0.5f);
+    auto acc = grid->getAccessor();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> value(-2.0f, 3.0f);
+    for (int x = -9; x < 30; ++x)
+        for (int y = -17; y < 15; ++y)
+            for (int z = -3; z < 21; ++z)
+                if ((x + 2 * y + 3 * z) % 7 != 0) acc.setValue(openvdb::Coord(x, y, z), value(rng));
+    grid->tree().fill(openvdb::CoordBBox({32, -16, 0}, {39, -9, 7}), 1.25f, true);  // a tile beside the leaves
+    const auto dense = DenseCopy<openvdb::FloatGrid>::of(*grid);
+    ASSERT_NE(dense, nullptr);
+    const auto constAcc = grid->getConstAccessor();
+    LeafSampler leaves(constAcc, grid->transform()), both(constAcc, grid->transform());
+    both.useDense(dense.get());
+    std::uniform_real_distribution<double> around(-14.0, 45.0);
+    int inCopy = 0, differ = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const openvdb::Vec3d p(around(rng), around(rng), around(rng));
+        inCopy += dense->holdsCell(floorToInt(p.x()), floorToInt(p.y()), floorToInt(p.z()));
+        differ += !sameBits(leaves.isSample(p), both.isSample(p));
+    }
+    EXPECT_EQ(differ, 0);
+    EXPECT_GT(inCopy, 20000);   // the copy served many lookups...
+    EXPECT_LT(inCopy, 180000);  // ...and the leaves the others
+}
+
+TEST(DenseCopy, SparseOrHugeGridsKeepTheirTree) {
+    initVdb();
+    auto sparse = openvdb::FloatGrid::create(0.0f);
+    sparse->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+    sparse->tree().setValue(openvdb::Coord(200, 200, 200), 1.0f);  // two leaves in a 201^3 box
+    EXPECT_EQ(DenseCopy<openvdb::FloatGrid>::of(*sparse), nullptr);
+    EXPECT_EQ(DenseCopy<openvdb::FloatGrid>::of(*openvdb::FloatGrid::create(0.0f)), nullptr);  // nothing active
+    auto full = openvdb::FloatGrid::create(0.0f);
+    full->tree().fill(openvdb::CoordBBox({0, 0, 0}, {63, 63, 63}), 1.0f, true);
+    full->tree().voxelizeActiveTiles();
+    EXPECT_NE(DenseCopy<openvdb::FloatGrid>::of(*full), nullptr);
+    EXPECT_EQ(DenseCopy<openvdb::FloatGrid>::of(*full, 1000), nullptr);  // more voxels than allowed
+}
+
+}  // namespace
+}  // namespace weft

@@ -100,6 +100,10 @@ public:
             skipper_.emplace(scene.volumes);
             if (skip == "auto" && !skipper_->pays()) skipper_.reset();
         }
+        // A full march of a dense grid reads it from one array; a skipping
+        // one looks up too few cells for the copy to pay.
+        if (!skipper_)
+            for (const Volume& vol : scene.volumes) dense_.push_back(DenseCopy<openvdb::FloatGrid>::of(*vol.grid));
     }
 
     Image render(const Scene& scene, RenderContext& ctx) override {
@@ -111,7 +115,8 @@ public:
         const float eps = accel ? rayEpsilon(scene) : 0.0f;
         const ImagePlane plane(plane_, s);
         const VolumeBvh bounds = scene.volumes.size() > 1 ? VolumeBvh::of(scene.volumes) : VolumeBvh();
-        const MarchSettings march{params_.step, params_.ertOpacity, scene.volumes.size() > 1 ? &bounds : nullptr};
+        MarchSettings march{params_.step, params_.ertOpacity, scene.volumes.size() > 1 ? &bounds : nullptr};
+        for (const auto& d : dense_) march.dense.push_back(d.get());
         // One per row: its own grid accessors and HDDAs, and its counts.
         struct Shader {
             const Raymarch& self;
@@ -159,6 +164,7 @@ private:
     RaymarchParams params_;
     ImagePlaneOptions plane_;
     std::optional<EmptySpaceSkipper> skipper_;
+    std::vector<std::unique_ptr<const DenseCopy<openvdb::FloatGrid>>> dense_;  // per volume; null where sparse
 };
 
 const TechniqueRegistrar registrar{{

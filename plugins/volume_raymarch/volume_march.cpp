@@ -95,8 +95,10 @@ VolumeMarcher::Lookup::Lookup(const Volume& v, const EmptySpaceSkipper* skipper,
 
 VolumeMarcher::VolumeMarcher(const Scene& scene, const MarchSettings& settings, const EmptySpaceSkipper* skipper)
     : settings_(settings), skipping_(skipper != nullptr) {
-    for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+    for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
         lookups_.emplace_back(scene.volumes[i], skipper, i);
+        if (i < settings.dense.size()) lookups_.back().sampler.useDense(settings.dense[i]);
+    }
 }
 
 // The volumes this ray crosses, their index rays and the march's unit.

@@ -51,6 +51,7 @@ struct MarchSettings {
     double step = 0.5;  // in voxel lengths of the finest volume crossed
     float ertOpacity = 0.99f;
     const VolumeBvh* bounds = nullptr;  // of the scene's volumes (null: test each one)
+    std::vector<const DenseCopy<openvdb::FloatGrid>*> dense;  // per volume, where it has one (may be short)
 };
 
 // skip_empty's HDDA masters, one per volume, built once per render on the
