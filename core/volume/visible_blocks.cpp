@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/volume/leaf_sampler.hpp"  // floorToInt
+
 namespace weft {
 
 namespace {
@@ -153,7 +155,7 @@ void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector
         int idx[3];
         double tNext[3];
         for (int a = 0; a < 3; ++a) {
-            idx[a] = std::clamp(int(std::floor(start[a] * 0.125)), 0, dims_[a] - 1);
+            idx[a] = std::clamp(floorToInt(start[a] * 0.125), 0, dims_[a] - 1);
             tNext[a] = step[a] != 0 ? (lo[a] + 8.0 * (idx[a] + (step[a] > 0)) - ray.origin[a]) * ray.inv[a]
                                     : std::numeric_limits<double>::infinity();
         }
