@@ -11,6 +11,7 @@
 // trivial elements uninitialised, for buffers a parallel loop fills whole
 // (the first touch then happens on every thread at once).
 #include <cstddef>
+#include <cstring>
 #include <new>
 #include <type_traits>
 #include <utility>
@@ -64,5 +65,23 @@ template <class T>
 using LargeBuffer = std::vector<T, LargePageAllocator<T, true>>;
 template <class T>
 using FreshBuffer = std::vector<T, LargePageAllocator<T, false>>;
+
+// Whether a fresh large buffer arrives zero-filled (an anonymous mapping).
+#ifdef __linux__
+constexpr bool kLargeBuffersArriveZeroed = true;
+#else
+constexpr bool kLargeBuffersArriveZeroed = false;
+#endif
+
+// n zero elements. A large buffer is zero as the kernel hands it over, so
+// no thread writes it here: the pass that fills it touches its pages first,
+// on every thread at once, instead of one thread zeroing it all up front.
+template <class T>
+FreshBuffer<T> zeroedBuffer(std::size_t n) {
+    static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_copyable_v<T>);
+    FreshBuffer<T> buffer(n);
+    if (!(kLargeBuffersArriveZeroed && n * sizeof(T) >= kLargeBufferBytes)) std::memset(buffer.data(), 0, n * sizeof(T));
+    return buffer;
+}
 
 }  // namespace weft

@@ -36,5 +36,17 @@ TEST(LargeBuffer, FreshBufferHoldsWhatIsWritten) {
     EXPECT_EQ(small[2], 1.5);
 }
 
+TEST(LargeBuffer, ZeroedBuffersAreZeroLargeOrSmall) {
+    for (const std::size_t n : {kLarge, std::size_t(5)}) {
+        FreshBuffer<float> zero = zeroedBuffer<float>(n);
+        ASSERT_EQ(zero.size(), n);
+        EXPECT_TRUE(std::all_of(zero.begin(), zero.end(), [](float v) { return v == 0.0f; })) << n;
+    }
+    // a small buffer reuses the general allocator's memory, which a previous buffer dirtied
+    { FreshBuffer<int> dirty(64, -1); }
+    FreshBuffer<int> small = zeroedBuffer<int>(64);
+    EXPECT_TRUE(std::all_of(small.begin(), small.end(), [](int v) { return v == 0; }));
+}
+
 }  // namespace
 }  // namespace weft

@@ -6,7 +6,7 @@ namespace weft {
 
 Image::Image(int width, int height, std::vector<std::string> channels)
     : width_(width), height_(height), channels_(std::move(channels)),
-      data_(static_cast<std::size_t>(width) * height * channels_.size(), 0.0f) {}
+      data_(zeroedBuffer<float>(static_cast<std::size_t>(width) * height * channels_.size())) {}
 
 Image Image::rgba(int width, int height) { return Image(width, height, {"R", "G", "B", "A"}); }
 
@@ -18,7 +18,7 @@ int Image::channelIndex(const std::string& name) const {
 int Image::addChannel(const std::string& name) {
     if (int existing = channelIndex(name); existing >= 0) return existing;
     const std::size_t oldCount = channels_.size();
-    LargeBuffer<float> grown(static_cast<std::size_t>(width_) * height_ * (oldCount + 1), 0.0f);
+    FreshBuffer<float> grown = zeroedBuffer<float>(static_cast<std::size_t>(width_) * height_ * (oldCount + 1));
     for (std::size_t p = 0; p < static_cast<std::size_t>(width_) * height_; ++p)
         std::copy_n(data_.begin() + p * oldCount, oldCount, grown.begin() + p * (oldCount + 1));
     data_ = std::move(grown);

@@ -30,8 +30,8 @@ public:
     float& at(int x, int y, int c) { return data_[offset(x, y) + c]; }
     float at(int x, int y, int c) const { return data_[offset(x, y) + c]; }
 
-    LargeBuffer<float>& data() { return data_; }
-    const LargeBuffer<float>& data() const { return data_; }
+    FreshBuffer<float>& data() { return data_; }
+    const FreshBuffer<float>& data() const { return data_; }
 
 private:
     std::size_t offset(int x, int y) const {
@@ -40,7 +40,7 @@ private:
     int width_ = 0;
     int height_ = 0;
     std::vector<std::string> channels_;
-    LargeBuffer<float> data_;
+    FreshBuffer<float> data_;  // zero where nothing was written
 };
 
 }  // namespace weft

@@ -69,17 +69,23 @@ void blurBoth(float* data, float* tmp, int width, int height, int stride, int ch
 
 }  // namespace
 
-void discontinuityBlur(float* data, int width, int height, int stride, int channels,
+void discontinuityBlur(float* data, float* scratch, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius) {
     if (radius <= 0 || channels <= 0) return;
     if (channels > 64) throw std::invalid_argument("discontinuityBlur: at most 64 channels");
     const float sigma = 0.5f * float(radius);
     std::vector<float> weights(std::size_t(radius) + 1);
     for (int k = 0; k <= radius; ++k) weights[std::size_t(k)] = std::exp(-0.5f * float(k * k) / (sigma * sigma));
-    std::vector<float> tmp(std::size_t(width) * height * stride);
-    if (channels == 6) blurBoth<6>(data, tmp.data(), width, height, stride, channels, discontinuity, weights);
-    else if (channels == 12) blurBoth<12>(data, tmp.data(), width, height, stride, channels, discontinuity, weights);
-    else blurBoth<0>(data, tmp.data(), width, height, stride, channels, discontinuity, weights);
+    if (channels == 6) blurBoth<6>(data, scratch, width, height, stride, channels, discontinuity, weights);
+    else if (channels == 12) blurBoth<12>(data, scratch, width, height, stride, channels, discontinuity, weights);
+    else blurBoth<0>(data, scratch, width, height, stride, channels, discontinuity, weights);
+}
+
+void discontinuityBlur(float* data, int width, int height, int stride, int channels,
+                       const std::vector<std::uint8_t>& discontinuity, int radius) {
+    if (radius <= 0 || channels <= 0) return;
+    FreshBuffer<float> scratch(std::size_t(width) * height * stride);
+    discontinuityBlur(data, scratch.data(), width, height, stride, channels, discontinuity, radius);
 }
 
 }  // namespace weft

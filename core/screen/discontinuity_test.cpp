@@ -2,6 +2,8 @@
 // not cross what it marks.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "core/screen/discontinuity.hpp"
 #include "core/base/rng.hpp"
 
@@ -67,6 +69,27 @@ TEST(Discontinuity, BlurKeepsConstantsAndDoesNotCrossEdges) {
             EXPECT_FLOAT_EQ(data[(std::size_t(y) * w + x) * 2], x < 8 ? 0.0f : 1.0f) << x << "," << y;
             EXPECT_NEAR(data[(std::size_t(y) * w + x) * 2 + 1], 3.0f, 1e-5f);
         }
+}
+
+TEST(Discontinuity, BlurIgnoresWhatItsScratchHeldAndLeavesOtherChannels) {
+    const int w = 24, h = 20, stride = 3;
+    GBuffer g = plane(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if ((x * 7 + y * 3) % 11 == 0) g.at(x, y).normal = Vec3f(0, 1, 0);
+    const auto disc = discontinuityBuffer(g, {});
+    std::vector<float> data(std::size_t(w) * h * stride);
+    Rng rng(11);
+    for (float& v : data) v = rng.uniform();
+    std::vector<float> own = data, given = data;
+    discontinuityBlur(own.data(), w, h, stride, 2, disc, 4);
+    std::vector<float> scratch(data.size(), std::numeric_limits<float>::quiet_NaN());
+    discontinuityBlur(given.data(), scratch.data(), w, h, stride, 2, disc, 4);
+    for (std::size_t i = 0; i < data.size(); ++i) {
+        EXPECT_EQ(given[i], own[i]) << i;
+        if (i % stride == 2) EXPECT_EQ(given[i], data[i]) << "channel 3 is not blurred, " << i;
+    }
+    EXPECT_NE(own, data);
 }
 
 TEST(Discontinuity, BlurReducesNoiseInsideARegion) {

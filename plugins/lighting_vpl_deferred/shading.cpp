@@ -42,7 +42,7 @@ struct TaskCounts {
 
 void shadeTask(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& L, const ShadeTask& task,
                const std::vector<const Vpl*>& subset, float subsetPaths, const std::vector<Brdf>& brdfs,
-               const ShadeConfig& cfg, LargeBuffer<LightTexel>& out, TaskCounts& counts, Counters& counters) {
+               const ShadeConfig& cfg, LightBuffer& out, TaskCounts& counts, Counters& counters) {
     const int i = task.subBuffer % L.n(), j = task.subBuffer / L.n();
     std::vector<std::size_t> texels;
     for (int r = task.y0; r < task.y1; ++r)
@@ -99,13 +99,13 @@ void shadeTask(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const S
 
 }  // namespace
 
-LargeBuffer<LightTexel> shadeSubBuffers(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& L,
+LightBuffer shadeSubBuffers(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& L,
                                         const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
                                         Counters& counters) {
     const int S = L.count();
     std::vector<std::vector<const Vpl*>> subsets(static_cast<std::size_t>(S));
     for (const Vpl& v : vpls.vpls) subsets[v.path % std::uint32_t(S)].push_back(&v);
-    LargeBuffer<LightTexel> out(split.size());
+    LightBuffer out = zeroedBuffer<LightTexel>(split.size());
     const std::vector<ShadeTask> tasks = shadeTasks(L);
     tbb::parallel_for(std::size_t(0), tasks.size(), [&](std::size_t k) {
         enableFastFloatMode();
@@ -152,7 +152,7 @@ void directLightAt(const Scene& scene, const GTexel& t, const Vec3f& wo, const B
 }
 
 void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
-                        int samples, std::uint64_t seed, LargeBuffer<LightTexel>& light, Counters& counters) {
+                        int samples, std::uint64_t seed, LightBuffer& light, Counters& counters) {
     const MeshAccel& accel = scene.accel();
     const float reach = 1.0f / std::sqrt(cfg.gmax);
     tbb::parallel_for(0, g.height, [&](int y) {

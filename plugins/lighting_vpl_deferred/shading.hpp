@@ -6,6 +6,7 @@
 // Kollig-Keller pass that restores the energy the geometry-term clamp
 // removes.
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/base/counters.hpp"
@@ -18,12 +19,16 @@ namespace weft {
 // Per pixel light before the albedos are applied (blurred as a whole). The
 // diffuse factors come first, so scenes without glossy materials blur only
 // the first kDiffuseChannels floats.
+// Trivial, so a frame of them comes zeroed by the kernel (zeroedBuffer) and
+// a gather writes into one without clearing it first.
 struct LightTexel {
-    Vec3f directD{0, 0, 0}, indirectD{0, 0, 0}, directS{0, 0, 0}, indirectS{0, 0, 0};
+    Vec3f directD, indirectD, directS, indirectS;
 };
 constexpr int kLightChannels = 12;
 constexpr int kDiffuseChannels = 6;
 static_assert(sizeof(LightTexel) == kLightChannels * sizeof(float));
+static_assert(std::is_trivially_default_constructible_v<LightTexel>);
+using LightBuffer = FreshBuffer<LightTexel>;
 
 struct ShadeConfig {
     bool visibility = true;
@@ -36,7 +41,7 @@ struct ShadeConfig {
 };
 
 // `split` is the G-buffer's shading inputs in the layout's split order (plain order for 1 x 1).
-LargeBuffer<LightTexel> shadeSubBuffers(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& layout,
+LightBuffer shadeSubBuffers(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& layout,
                                         const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
                                         Counters& counters);
 
@@ -45,7 +50,7 @@ LargeBuffer<LightTexel> shadeSubBuffers(const Scene& scene, const LargeBuffer<Sh
 // clamp allows (G > gmax), the direct light reflected there, weighted by
 // 1 - gmax / G. `samples` rays per pixel.
 void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
-                        int samples, std::uint64_t seed, LargeBuffer<LightTexel>& light, Counters& counters);
+                        int samples, std::uint64_t seed, LightBuffer& light, Counters& counters);
 
 // Direct light from a texel's point of view: one emitter sample (if any)
 // plus every point/directional light, with shadow rays (through the volumes

@@ -129,19 +129,19 @@ public:
 
         const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
         const LargeBuffer<ShadeTexel> split = splitPass(g, layout, ctx);
-        LargeBuffer<LightTexel> light;
+        LightBuffer light;
         {
             ScopedTimer t(ctx.timings, p_.visibility ? "SSM.shade" : "SNSM.shade");
             light = shadeSubBuffers(scene, split, layout, vpls, brdfs, cfg, ctx.counters);
         }
-        gatherPass(light, layout, ctx);
+        LightBuffer spare = gatherPass(light, layout, ctx);
         if (p_.compensation > 0 && std::isfinite(cfg.gmax)) {
             ScopedTimer t(ctx.timings, "KK.bias_compensation");
             compensateClamping(scene, g, brdfs, cfg, p_.compensation, s.seed, light, ctx.counters);
         }
         std::vector<std::uint8_t> disc;
         { ScopedTimer t(ctx.timings, "DB.discontinuity"); disc = discontinuityBuffer(g, p_.thresholds); }
-        if (p_.filter && layout.count() > 1) blurPass(light, disc, brdfs, layout, ctx);
+        if (p_.filter && layout.count() > 1) blurPass(light, spare, disc, brdfs, layout, ctx);
         ScopedTimer t(ctx.timings, "C.compose");
         return compose(scene, g, light, disc, eyeT, layout, brdfs, cfg, ctx.counters);
     }
@@ -169,27 +169,30 @@ private:
         return split;
     }
 
-    // BG: the light buffer back in image order.
-    void gatherPass(LargeBuffer<LightTexel>& light, const SubBufferLayout& layout, RenderContext& ctx) const {
-        if (layout.count() == 1) return;
+    // BG: the light buffer back in image order. Returns the buffer in
+    // sub-buffer order, free for the blur (a fresh frame-sized buffer costs
+    // its page faults again).
+    LightBuffer gatherPass(LightBuffer& light, const SubBufferLayout& layout, RenderContext& ctx) const {
+        if (layout.count() == 1) return {};
         ScopedTimer t(ctx.timings, "BG.gather");
-        LargeBuffer<LightTexel> gathered, scratch;
+        LightBuffer gathered, scratch;
         if (p_.twoPass) gatherTwoPass(light, gathered, scratch, layout, p_.p, p_.q);
         else gatherOnePass(light, gathered, layout);
-        light = std::move(gathered);
+        std::swap(light, gathered);
+        return gathered;
     }
 
     // B: discontinuity-aware blur of the light factors (glossy ones only when some material is glossy).
-    void blurPass(LargeBuffer<LightTexel>& light, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
+    void blurPass(LightBuffer& light, LightBuffer& scratch, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
                   const SubBufferLayout& layout, RenderContext& ctx) const {
         ScopedTimer t(ctx.timings, "B.blur");
         bool glossy = false;
         for (const Brdf& b : brdfs) glossy |= b.glossy();
-        discontinuityBlur(reinterpret_cast<float*>(light.data()), layout.width(), layout.height(), kLightChannels,
+        discontinuityBlur(reinterpret_cast<float*>(light.data()), reinterpret_cast<float*>(scratch.data()), layout.width(), layout.height(), kLightChannels,
                           glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
     }
 
-    Image compose(const Scene& scene, const GBuffer& g, const LargeBuffer<LightTexel>& light,
+    Image compose(const Scene& scene, const GBuffer& g, const LightBuffer& light,
                   const std::vector<std::uint8_t>& disc, const std::vector<Vec3f>& eyeT, const SubBufferLayout& layout,
                   const std::vector<Brdf>& brdfs, const ShadeConfig& cfg, Counters& counters) const {
         Image img(g.width, g.height, {"R", "G", "B", "A", "direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G",

@@ -115,7 +115,7 @@ public:
         const float eps = accel ? rayEpsilon(scene) : 0.0f;
         const ImagePlane plane(plane_, s);
         const VolumeBvh bounds = scene.volumes.size() > 1 ? VolumeBvh::of(scene.volumes) : VolumeBvh();
-        MarchSettings march{params_.step, params_.ertOpacity, scene.volumes.size() > 1 ? &bounds : nullptr};
+        MarchSettings march{params_.step, params_.ertOpacity, scene.volumes.size() > 1 ? &bounds : nullptr, {}};
         for (const auto& d : dense_) march.dense.push_back(d.get());
         // One per row: its own grid accessors and HDDAs, and its counts.
         struct Shader {
