@@ -23,6 +23,14 @@ double sliceOpacity(const Volume& volume, double spacing, float value);
 // dense where the glow changes, whatever it reads from the density.
 OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx);
 
+// The two ways distanceToFeatures builds the field of a mask; the values
+// are the same. By rings: OpenVDB's dilation one ring at a time, any cap.
+// By blocks: each leaf within reach of a feature on its own, in parallel,
+// from a dense block of the mask around it; for at most kBlockRings rings.
+constexpr int kBlockRings = 16;
+OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx);
+OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const OracleContext& ctx);
+
 // Voxels where one slice's emitted radiance (the largest channel of the
 // emission grid x the slice spacing) has a gradient above ctx.epsilon per
 // voxel, the emission's counterpart of gradient_alpha's opacity gradient.

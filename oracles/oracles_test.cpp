@@ -98,6 +98,35 @@ TEST(FeatureDistance, StopsGrowingAtTheVolumesExtent) {
     EXPECT_LT(f.distance->activeVoxelCount(), openvdb::Index64(64 * 64 * 64));
 }
 
+// The field by blocks (leaf by leaf, in parallel) equals the field grown
+// ring by ring, voxel for voxel: scattered voxels, an active tile, a slab,
+// negative coordinates, fractional spacings, one ring up to the most blocks
+// take, and rings cut short by the volume's extent.
+TEST(FeatureDistance, BlocksAndRingsGiveTheSameField) {
+    const Volume wide = boxVolume(-40, 40), small = boxVolume(0, 5);
+    Rng rng(3);
+    openvdb::MaskGrid features(false);
+    for (int i = 0; i < 40; ++i) features.tree().setValueOn(Coord(int(rng.next() % 70) - 35, int(rng.next() % 70) - 35, int(rng.next() % 70) - 35));
+    features.tree().fill(openvdb::CoordBBox(Coord(8), Coord(15)), true, true);  // stays an active tile
+    features.tree().fill(openvdb::CoordBBox(Coord(-20, -3, 5), Coord(-17, 4, 6)), true, true);
+    struct Case { const Volume* volume; double spacing; int lmax; };
+    for (const Case& c : {Case{&wide, 1.0, 0}, Case{&wide, 1.0, 3}, Case{&wide, 0.5, 2}, Case{&wide, 0.3, 3}, Case{&wide, 2.0, 3},
+                          Case{&wide, 1.0, 4}, Case{&small, 8.0, 6}}) {
+        const OracleContext ctx{*c.volume, c.spacing, c.lmax, 0.01};
+        const OracleField rings = distanceFieldByRings(features, ctx), blocks = distanceFieldByBlocks(features, ctx);
+        SCOPED_TRACE("spacing " + std::to_string(c.spacing) + " lmax " + std::to_string(c.lmax));
+        EXPECT_EQ(blocks.constant, rings.constant);
+        EXPECT_EQ(blocks.distance->background(), rings.distance->background());
+        EXPECT_EQ(blocks.distance->activeVoxelCount(), rings.distance->activeVoxelCount());
+        auto a = rings.distance->getConstAccessor(), b = blocks.distance->getConstAccessor();
+        int differ = 0;
+        for (int x = -60; x <= 60; ++x)
+            for (int y = -60; y <= 60; ++y)
+                for (int z = -60; z <= 60; ++z) differ += a.getValue(Coord(x, y, z)) != b.getValue(Coord(x, y, z));
+        EXPECT_EQ(differ, 0);
+    }
+}
+
 // A moving volume's field: every distance (stored voxels, tiles and the
 // background) shrinks by the reach, never below the minimum; a still one is
 // handed back as it is.

@@ -1,5 +1,7 @@
 #include "core/volume/slices.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -103,11 +105,12 @@ LevelRays makeLevelRays(const Camera& camera, const std::vector<SliceVolume>& vo
     rays.first.resize(n * volumes.size()), rays.last.resize(n * volumes.size());
     const auto& ref = volumes.front().volume->grid->transform();
     const int scale = 1 << level;
+    const CameraRays eye(camera, imageWidth, imageHeight);
     for (std::size_t k = 1; k < volumes.size(); ++k)
-        for (int y = 0; y < rays.height; ++y)
+        tbb::parallel_for(0, rays.height, [&](int y) {
             for (int x = 0; x < rays.width; ++x) {
                 const std::size_t i = std::size_t(rays.index(x, y)), at = k * n + i;
-                const Ray world = camera.generate(scale * (x + 0.5), scale * (y + 0.5), imageWidth, imageHeight);
+                const Ray world = eye.at(scale * (x + 0.5), scale * (y + 0.5));
                 const auto ray = toIndexRay(world, *volumes[k].volume);
                 rays.first[at] = 1, rays.last[at] = 0;
                 if (!ray) continue;
@@ -116,6 +119,7 @@ LevelRays makeLevelRays(const Camera& camera, const std::vector<SliceVolume>& vo
                 rays.first[at] = std::max(0, int(std::ceil((ray->t0 * toRef - slices.tNear) / slices.spacing)));
                 rays.last[at] = std::min(slices.imax, int(std::floor((ray->t1 * toRef - slices.tNear) / slices.spacing)));
             }
+        });
     return rays;
 }
 
@@ -126,16 +130,18 @@ LevelRays makeLevelRays(const Camera& camera, const Volume& volume, const SliceS
     rays.width = paddedWidth / scale, rays.height = paddedHeight / scale;
     const std::size_t n = std::size_t(rays.width) * rays.height;
     rays.dir.resize(n), rays.first.resize(n), rays.last.resize(n);
-    for (int y = 0; y < rays.height; ++y)
+    const CameraRays eye(camera, imageWidth, imageHeight);  // one frame for every ray, as Camera::generate builds per call
+    tbb::parallel_for(0, rays.height, [&](int y) {
         for (int x = 0; x < rays.width; ++x) {
             const int i = rays.index(x, y);
-            const SliceRay ray = sliceRayOf(camera.generate(scale * (x + 0.5), scale * (y + 0.5), imageWidth, imageHeight), volume, slices);
+            const SliceRay ray = sliceRayOf(eye.at(scale * (x + 0.5), scale * (y + 0.5)), volume, slices);
             rays.dir[i] = ray.dir;
             rays.first[i] = 1, rays.last[i] = 0;
             if (!ray.inside) continue;
             const auto [first, last] = ray.slices(slices);
             rays.first[i] = std::max(0, first), rays.last[i] = std::min(slices.imax, last);
         }
+    });
     return rays;
 }
 

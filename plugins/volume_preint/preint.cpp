@@ -151,10 +151,12 @@ private:
         std::int64_t rays = 0, samples = 0, composites = 0;
         SurfaceCounts surfaces;
 
-        explicit Shader(const Frame& frame) : f(frame), samplers(frame.volumes) {}
+        CameraRays eye;  // the camera's frame, built once per row instead of per ray
+
+        explicit Shader(const Frame& frame) : f(frame), samplers(frame.volumes), eye(frame.scene.camera, frame.s.width, frame.s.height) {}
         Rgba operator()(const CameraSample& c) {
             const Volume& reference = *f.volumes.front().volume;
-            const Ray worldRay = f.scene.camera.generate(c.x, c.y, f.s.width, f.s.height);
+            const Ray worldRay = eye.at(c.x, c.y);
             const double shift = f.offsets ? f.offsets->sample(c.px, c.py, int(c.index % std::uint32_t(f.s.spp))).t : 0.0;
             ++rays;
             if (f.moves) samplers.setTime(f.scene.shutter.frameTime(0, c.time));

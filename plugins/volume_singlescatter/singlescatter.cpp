@@ -36,6 +36,7 @@
 // rays), shadow.samples (density lookups for shadows, the cache included),
 // mesh.shadow_rays (with meshes only).
 #include <cmath>
+#include <optional>
 
 #include "core/base/rng.hpp"
 #include "core/lighting/delta_lights.hpp"
@@ -84,6 +85,7 @@ private:
         bool meshes;
         std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> row;
         std::int64_t rays = 0;
+        std::optional<CameraRays> still = std::nullopt;  // the camera's frame, where it holds all frame long
 
         RgbaD operator()(const CameraSample& c) {
             Rng rng(hashCombine(s.seed, (std::uint64_t(c.py) * s.width + c.px) * 1024 + c.index));
@@ -92,9 +94,11 @@ private:
             bool surface = false;
             ++rays;
             // compat=vdb_render's camera stands still; the scene's moves along its keys.
-            const Camera camera = self.params_.camera.value_or(scene.cameraAt(c.time));
+            if (!still && (self.params_.camera || !scene.cameraMoves()))
+                still.emplace(self.params_.camera.value_or(scene.cameraAt(0)), s.width, s.height);
+            const Ray ray = still ? still->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
             const double time = scene.shutter.frameTime(0, c.time);
-            const Vec3d L = tracer.radiance(camera.generate(c.x, c.y, s.width, s.height), offset, time, *row, rng, T, surface);
+            const Vec3d L = tracer.radiance(ray, offset, time, *row, rng, T, surface);
             return {L[0], L[1], L[2], surface ? 1.0 : 1.0 - (T[0] + T[1] + T[2]) / 3.0};
         }
         void flush(Counters& counters) const {
