@@ -62,92 +62,6 @@ OracleField fieldOf(openvdb::FloatGrid::Ptr distance, float cap) {
     return field;
 }
 
-// Chebyshev distances (capped at K + 1) from the features to the voxels of
-// the leaf at `origin`, from the features K voxels beyond the leaf on every
-// side as a block of bits: each (x, y) of the block one 64-bit word of its
-// voxels along z. Growing the block by one voxel in x, y and z (a 3^3 cube)
-// is a few shifts and ORs per word; a leaf voxel first set after k growths
-// is k voxels from the nearest feature.
-class LeafDistances {
-public:
-    explicit LeafDistances(int K)
-        : K_(K), B_(8 + 2 * K), inBlock_(B_ >= 64 ? ~0ull : (1ull << B_) - 1), rows_(std::size_t(B_) * B_), grown_(rows_.size()) {}
-
-    // Distances of the leaf's 512 voxels, in the leaf's offset order (x
-    // major); null when no feature is within K of the leaf.
-    const std::uint8_t* of(const openvdb::MaskTree& features, const openvdb::Coord& origin) {
-        if (!load(features, origin - openvdb::Coord(K_))) return nullptr;
-        std::fill(std::begin(out_), std::end(out_), std::uint8_t(K_ + 1));
-        std::fill(std::begin(done_), std::end(done_), 0);
-        int left = 512 - record(0);
-        for (int k = 1; k <= K_ && left > 0; ++k) grow(), left -= record(k);
-        return left == 512 ? nullptr : out_;
-    }
-
-private:
-    std::uint64_t& row(int x, int y) { return rows_[std::size_t(x) * B_ + y]; }
-
-    // The mask's leaves overlapping the block, a word (x) of each leaf at a
-    // time: its byte y holds the voxels along z. False when none has a voxel there.
-    bool load(const openvdb::MaskTree& features, const openvdb::Coord& lo) {
-        std::fill(rows_.begin(), rows_.end(), 0);
-        bool any = false;
-        const openvdb::Coord hi = lo + openvdb::Coord(B_ - 1);
-        for (int lx = lo.x() & ~7; lx <= hi.x(); lx += 8)
-            for (int ly = lo.y() & ~7; ly <= hi.y(); ly += 8)
-                for (int lz = lo.z() & ~7; lz <= hi.z(); lz += 8) {
-                    const auto* leaf = features.probeConstLeaf(openvdb::Coord(lx, ly, lz));
-                    if (!leaf) continue;
-                    const int shift = lz - lo.z();  // of the leaf's z = 0 in the block, -7 .. B - 1
-                    for (int i = 0; i < 8; ++i) {
-                        const int bx = lx + i - lo.x();
-                        const std::uint64_t word = leaf->getValueMask().template getWord<std::uint64_t>(openvdb::Index(i));
-                        if (bx < 0 || bx >= B_ || !word) continue;
-                        for (int j = 0; j < 8; ++j) {
-                            const int by = ly + j - lo.y();
-                            const std::uint64_t z = (word >> (8 * j)) & 0xff;
-                            if (by < 0 || by >= B_ || !z) continue;
-                            const std::uint64_t bits = (shift >= 0 ? z << shift : z >> -shift) & inBlock_;
-                            row(bx, by) |= bits;
-                            any |= bits != 0;
-                        }
-                    }
-                }
-        return any;
-    }
-
-    // One voxel more in every direction: along z in each word, then y, then x.
-    void grow() {
-        for (std::uint64_t& r : rows_) r = (r | r << 1 | r >> 1) & inBlock_;
-        for (int x = 0; x < B_; ++x)
-            for (int y = 0; y < B_; ++y)
-                grown_[std::size_t(x) * B_ + y] = row(x, y) | (y > 0 ? row(x, y - 1) : 0) | (y + 1 < B_ ? row(x, y + 1) : 0);
-        for (int x = 0; x < B_; ++x)
-            for (int y = 0; y < B_; ++y)
-                row(x, y) = grown_[std::size_t(x) * B_ + y] | (x > 0 ? grown_[std::size_t(x - 1) * B_ + y] : 0) |
-                            (x + 1 < B_ ? grown_[std::size_t(x + 1) * B_ + y] : 0);
-    }
-
-    // Gives distance k to the leaf's voxels first set now; returns how many.
-    int record(int k) {
-        int count = 0;
-        for (int x = 0; x < 8; ++x)
-            for (int y = 0; y < 8; ++y) {
-                std::uint8_t& done = done_[x * 8 + y];
-                std::uint8_t fresh = std::uint8_t((row(x + K_, y + K_) >> K_) & 0xff) & std::uint8_t(~done);
-                done |= fresh;
-                for (; fresh; fresh &= std::uint8_t(fresh - 1), ++count) out_[(x << 6) | (y << 3) | __builtin_ctz(fresh)] = std::uint8_t(k);
-            }
-        return count;
-    }
-
-    int K_, B_;
-    std::uint64_t inBlock_;
-    std::vector<std::uint64_t> rows_, grown_;
-    std::uint8_t done_[64];
-    std::uint8_t out_[512];
-};
-
 }  // namespace
 
 OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx) {
@@ -184,32 +98,16 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
     using namespace openvdb;
     const float cap = fieldCap(ctx);
     const int K = ringCount(ctx, cap);
-    if (K > kBlockRings) throw std::invalid_argument("distanceFieldByBlocks: " + std::to_string(K) + " rings, at most " + std::to_string(kBlockRings));
+    if (K > kMaxLeafReach) throw std::invalid_argument("distanceFieldByBlocks: " + std::to_string(K) + " rings, at most " + std::to_string(kMaxLeafReach));
     MaskTree mask(features.tree());
     mask.voxelizeActiveTiles();
-    // Every leaf within K voxels of a feature leaf.
-    std::vector<Coord> origins;
-    for (auto leaf = mask.cbeginLeaf(); leaf; ++leaf) {
-        const Coord lo = leaf->origin() - Coord(K), hi = leaf->origin() + Coord(7 + K);
-        for (int x = lo.x() & ~7; x <= hi.x(); x += 8)
-            for (int y = lo.y() & ~7; y <= hi.y(); y += 8)
-                for (int z = lo.z() & ~7; z <= hi.z(); z += 8) origins.emplace_back(x, y, z);
-    }
-    std::sort(origins.begin(), origins.end());
-    origins.erase(std::unique(origins.begin(), origins.end()), origins.end());
-    float value[256];
+    float value[kMaxLeafReach + 1];
     for (int k = 0; k <= K; ++k) value[k] = ringDistance(k, ctx, cap);
-    std::vector<std::unique_ptr<FloatTree::LeafNodeType>> leaves(origins.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
-        LeafDistances distances(K);
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            const std::uint8_t* d = distances.of(mask, origins[i]);
-            if (!d) continue;
-            auto leaf = std::make_unique<FloatTree::LeafNodeType>(origins[i], cap, false);
-            for (Index n = 0; n < FloatTree::LeafNodeType::SIZE; ++n)
-                if (d[n] <= K) leaf->setValueOn(n, value[d[n]]);
-            leaves[i] = std::move(leaf);
-        }
+    auto leaves = leavesNear<FloatTree::LeafNodeType>(mask, K, [&](const Coord& origin, const std::uint8_t* d) {
+        auto leaf = std::make_unique<FloatTree::LeafNodeType>(origin, cap, false);
+        for (Index n = 0; n < FloatTree::LeafNodeType::SIZE; ++n)
+            if (d[n] <= K) leaf->setValueOn(n, value[d[n]]);
+        return leaf;
     });
     FloatGrid::Ptr distance = FloatGrid::create(cap);
     distance->setTransform(features.transform().copy());
@@ -222,7 +120,7 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
 // blocks where the rings are few (each leaf on its own, in parallel), else
 // ring by ring.
 OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext& ctx) {
-    if (ringCount(ctx, fieldCap(ctx)) <= kBlockRings) return distanceFieldByBlocks(features, ctx);
+    if (ringCount(ctx, fieldCap(ctx)) <= kMaxLeafReach) return distanceFieldByBlocks(features, ctx);
     return distanceFieldByRings(features, ctx);
 }
 

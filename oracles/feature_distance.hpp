@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "core/volume/leaf_reach.hpp"
 #include "oracles/oracle.hpp"
 
 namespace weft {
@@ -25,9 +26,8 @@ OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleCo
 
 // The two ways distanceToFeatures builds the field of a mask; the values
 // are the same. By rings: OpenVDB's dilation one ring at a time, any cap.
-// By blocks: each leaf within reach of a feature on its own, in parallel,
-// from a dense block of the mask around it; for at most kBlockRings rings.
-constexpr int kBlockRings = 16;
+// By blocks: each leaf within reach of a feature on its own, in parallel
+// (core/volume/leaf_reach.hpp); for at most kMaxLeafReach rings.
 OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx);
 OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const OracleContext& ctx);
 

@@ -1,10 +1,13 @@
 #include "plugins/volume_singlescatter/light_cache.hpp"
 
-#include <openvdb/tools/Morphology.h>
 #include <openvdb/tree/LeafManager.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <memory>
+
+#include "core/volume/leaf_reach.hpp"
 
 namespace weft {
 
@@ -12,18 +15,19 @@ namespace {
 
 int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-// Every cache voxel a trilinear lookup of a non-empty point can reach; the
-// cache's voxels are `factor` density voxels wide, centred on a density voxel.
+// Every cache voxel a trilinear lookup of a non-empty point can reach;
+// the cache's voxels are `factor` density voxels wide, centred on a density
+// voxel: the density's voxels at the cache's scale, grown by one voxel.
 openvdb::FloatGrid::Ptr cacheTopology(const openvdb::FloatGrid& density, int factor) {
     openvdb::FloatGrid::Ptr cache = openvdb::FloatGrid::create(0.0f);
     openvdb::math::Transform::Ptr xf = density.transform().copy();
     xf->preScale(double(factor));
     cache->setTransform(xf);
+    openvdb::MaskTree coarse(false);
     if (factor == 1) {
-        cache->tree().topologyUnion(density.tree());
-        cache->tree().voxelizeActiveTiles();
+        coarse.topologyUnion(density.tree());
     } else {
-        auto acc = cache->getAccessor();
+        openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(coarse);
         for (auto it = density.tree().cbeginValueOn(); it; ++it) {
             const openvdb::CoordBBox box = it.getBoundingBox();
             for (int x = floorDiv(box.min().x(), factor); x <= floorDiv(box.max().x(), factor); ++x)
@@ -32,8 +36,16 @@ openvdb::FloatGrid::Ptr cacheTopology(const openvdb::FloatGrid& density, int fac
                         acc.setValueOn(openvdb::Coord(x, y, z));
         }
     }
-    openvdb::tools::dilateActiveValues(cache->tree(), 1, openvdb::tools::NN_FACE_EDGE_VERTEX,
-                                       openvdb::tools::EXPAND_TILES);
+    coarse.voxelizeActiveTiles();
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    auto leaves = leavesNear<Leaf>(coarse, 1, [](const openvdb::Coord& origin, const std::uint8_t* d) {
+        auto leaf = std::make_unique<Leaf>(origin, 0.0f, false);
+        for (openvdb::Index n = 0; n < Leaf::SIZE; ++n)
+            if (d[n] <= 1) leaf->setValueOn(n);
+        return leaf;
+    });
+    for (auto& leaf : leaves)
+        if (leaf) cache->tree().addLeaf(leaf.release());
     return cache;
 }
 

@@ -1,0 +1,91 @@
+#include "core/volume/leaf_reach.hpp"
+
+#include <algorithm>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+namespace weft {
+
+LeafDistances::LeafDistances(int reach)
+    : K_(reach), B_(8 + 2 * reach), inBlock_(B_ >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << B_) - 1), rows_(std::size_t(B_) * B_), grown_(rows_.size()) {
+    if (reach < 0 || reach > kMaxLeafReach) throw std::invalid_argument("LeafDistances: reach " + std::to_string(reach) + " outside [0, 16]");
+}
+
+const std::uint8_t* LeafDistances::of(const openvdb::MaskTree& mask, const openvdb::Coord& origin) {
+    if (!load(mask, origin - openvdb::Coord(K_))) return nullptr;
+    std::fill(std::begin(out_), std::end(out_), std::uint8_t(K_ + 1));
+    std::fill(std::begin(done_), std::end(done_), 0);
+    int left = 512 - record(0);
+    for (int k = 1; k <= K_ && left > 0; ++k) grow(), left -= record(k);
+    return left == 512 ? nullptr : out_;
+}
+
+// The mask's leaves overlapping the block, a word (x) of each leaf at a
+// time: its byte y holds the voxels along z. False when none has a voxel there.
+bool LeafDistances::load(const openvdb::MaskTree& mask, const openvdb::Coord& lo) {
+    std::fill(rows_.begin(), rows_.end(), 0);
+    bool any = false;
+    const openvdb::Coord hi = lo + openvdb::Coord(B_ - 1);
+    for (int lx = lo.x() & ~7; lx <= hi.x(); lx += 8)
+        for (int ly = lo.y() & ~7; ly <= hi.y(); ly += 8)
+            for (int lz = lo.z() & ~7; lz <= hi.z(); lz += 8) {
+                const auto* leaf = mask.probeConstLeaf(openvdb::Coord(lx, ly, lz));
+                if (!leaf) continue;
+                const int shift = lz - lo.z();  // of the leaf's z = 0 in the block, -7 .. B - 1
+                for (int i = 0; i < 8; ++i) {
+                    const int bx = lx + i - lo.x();
+                    const std::uint64_t word = leaf->getValueMask().template getWord<std::uint64_t>(openvdb::Index(i));
+                    if (bx < 0 || bx >= B_ || !word) continue;
+                    for (int j = 0; j < 8; ++j) {
+                        const int by = ly + j - lo.y();
+                        const std::uint64_t z = (word >> (8 * j)) & 0xff;
+                        if (by < 0 || by >= B_ || !z) continue;
+                        const std::uint64_t bits = (shift >= 0 ? z << shift : z >> -shift) & inBlock_;
+                        row(bx, by) |= bits;
+                        any |= bits != 0;
+                    }
+                }
+            }
+    return any;
+}
+
+// One voxel more in every direction: along z in each word, then y, then x.
+void LeafDistances::grow() {
+    for (std::uint64_t& r : rows_) r = (r | r << 1 | r >> 1) & inBlock_;
+    for (int x = 0; x < B_; ++x)
+        for (int y = 0; y < B_; ++y)
+            grown_[std::size_t(x) * B_ + y] = row(x, y) | (y > 0 ? row(x, y - 1) : 0) | (y + 1 < B_ ? row(x, y + 1) : 0);
+    for (int x = 0; x < B_; ++x)
+        for (int y = 0; y < B_; ++y)
+            row(x, y) = grown_[std::size_t(x) * B_ + y] | (x > 0 ? grown_[std::size_t(x - 1) * B_ + y] : 0) |
+                        (x + 1 < B_ ? grown_[std::size_t(x + 1) * B_ + y] : 0);
+}
+
+// Gives distance k to the leaf's voxels first set now; returns how many.
+int LeafDistances::record(int k) {
+    int count = 0;
+    for (int x = 0; x < 8; ++x)
+        for (int y = 0; y < 8; ++y) {
+            std::uint8_t& done = done_[x * 8 + y];
+            std::uint8_t fresh = std::uint8_t((row(x + K_, y + K_) >> K_) & 0xff) & std::uint8_t(~done);
+            done |= fresh;
+            for (; fresh; fresh &= std::uint8_t(fresh - 1), ++count) out_[(x << 6) | (y << 3) | __builtin_ctz(fresh)] = std::uint8_t(k);
+        }
+    return count;
+}
+
+std::vector<openvdb::Coord> leafOriginsNear(const openvdb::MaskTree& mask, int reach) {
+    std::vector<openvdb::Coord> origins;
+    for (auto leaf = mask.cbeginLeaf(); leaf; ++leaf) {
+        const openvdb::Coord lo = leaf->origin() - openvdb::Coord(reach), hi = leaf->origin() + openvdb::Coord(7 + reach);
+        for (int x = lo.x() & ~7; x <= hi.x(); x += 8)
+            for (int y = lo.y() & ~7; y <= hi.y(); y += 8)
+                for (int z = lo.z() & ~7; z <= hi.z(); z += 8) origins.emplace_back(x, y, z);
+    }
+    std::sort(origins.begin(), origins.end());
+    origins.erase(std::unique(origins.begin(), origins.end()), origins.end());
+    return origins;
+}
+
+}  // namespace weft
