@@ -155,45 +155,65 @@ void compensateClamping(const Scene& scene, const GBuffer& g, const std::vector<
                         int samples, std::uint64_t seed, LightBuffer& light, Counters& counters) {
     const MeshAccel& accel = scene.accel();
     const float reach = 1.0f / std::sqrt(cfg.gmax);
+    // A BRDF-sampled ray of a pixel, waiting in its row's stream.
+    struct Bounce {
+        int x, sample;
+        Vec3f wi;
+        float cosX, pdf;
+    };
     tbb::parallel_for(0, g.height, [&](int y) {
         enableFastFloatMode();
         std::int64_t rays = 0;
         std::optional<SegmentAttenuation> attenuation;
         if (cfg.volumes) attenuation.emplace(*cfg.volumes);
         SegmentAttenuation* media = attenuation ? &*attenuation : nullptr;
+        auto u = [&](int x, int i, std::uint32_t dim) { return pixelRandom(seed ^ 0x6b6b6b6bull, x, y, std::uint32_t(i), dim); };
+        // The row's rays go to Embree as one stream, in pixel and sample order.
+        std::vector<Bounce> bounces;
+        std::vector<RTCRayHit> stream;
         for (int x = 0; x < g.width; ++x) {
             const GTexel& t = g.at(x, y);
             if (t.background()) continue;
             const Brdf& fx = brdfs[std::size_t(t.material)];
             const Vec3f wo = (cfg.eye - t.position).unitSafe();
-            LightTexel& out = light[std::size_t(y) * g.width + x];
             for (int i = 0; i < samples; ++i) {
-                auto u = [&](std::uint32_t dim) { return pixelRandom(seed ^ 0x6b6b6b6bull, x, y, std::uint32_t(i), dim); };
-                const Vec3f wi = fx.sample(wo, t.normal, u(0), u(1), u(2));
+                const Vec3f wi = fx.sample(wo, t.normal, u(x, i, 0), u(x, i, 1), u(x, i, 2));
                 const float cosX = t.normal.dot(wi), pdf = fx.pdf(wo, wi, t.normal);
                 if (cosX <= 0 || !(pdf > 0)) continue;
-                ++rays;
                 // G = cosX cosY / d^2 <= 1 / d^2 exceeds gmax only closer than 1 / sqrt(gmax): farther hits add nothing.
-                const SurfaceHit hit = accel.intersect(t.position + t.normal * cfg.eps, wi, 0.0f, reach);
-                if (!hit.valid()) continue;
-                const float cosY = std::abs(hit.normal.dot(wi));
-                const float G = cosX * cosY / (hit.t * hit.t);
-                if (G <= cfg.gmax) continue;
-                // Light leaving y towards x: its direct light, reflected by its BRDF.
-                GTexel ty;
-                ty.position = t.position + t.normal * cfg.eps + wi * hit.t;
-                ty.normal = hit.normal.dot(wi) < 0 ? hit.normal : -hit.normal;
-                ty.material = std::int32_t(accel.material(hit.geom, hit.prim));
-                const Brdf& fy = brdfs[std::size_t(ty.material)];
-                const float lu[3] = {u(3), u(4), u(5)};
-                Vec3f dY(0, 0, 0), sY(0, 0, 0);
-                directLightAt(scene, ty, -wi, fy, cfg.eps, lu, true, dY, sY, rays, media);
-                Vec3f leaving = fy.kd * dY + fy.ks * sY;
-                if (media) leaving *= media->along(t.position + t.normal * cfg.eps, wi, hit.t);
-                const Vec3f radiance = leaving * ((1.0f - cfg.gmax / G) * cosX / (pdf * float(samples)));
-                out.indirectD += radiance * float(1 / M_PI);
-                if (fx.glossy()) out.indirectS += radiance * fx.lobe(wo, wi, t.normal);
+                bounces.push_back({x, i, wi, cosX, pdf});
+                stream.emplace_back();
+                setRay(stream.back().ray, t.position + t.normal * cfg.eps, wi, 0.0f, reach);
+                stream.back().hit.geomID = RTC_INVALID_GEOMETRY_ID;
             }
+        }
+        rays += std::int64_t(stream.size());
+        if (!stream.empty()) accel.intersectStream(stream.data(), unsigned(stream.size()), false);
+        for (std::size_t k = 0; k < bounces.size(); ++k) {
+            const RTCRayHit& rh = stream[k];
+            if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+            const Bounce& b = bounces[k];
+            const GTexel& t = g.at(b.x, y);
+            const Brdf& fx = brdfs[std::size_t(t.material)];
+            const Vec3f wo = (cfg.eye - t.position).unitSafe(), normal = accel.normal(rh.hit.geomID, rh.hit.primID);
+            const float tHit = rh.ray.tfar, cosY = std::abs(normal.dot(b.wi));
+            const float G = b.cosX * cosY / (tHit * tHit);
+            if (G <= cfg.gmax) continue;
+            // Light leaving y towards x: its direct light, reflected by its BRDF.
+            GTexel ty;
+            ty.position = t.position + t.normal * cfg.eps + b.wi * tHit;
+            ty.normal = normal.dot(b.wi) < 0 ? normal : -normal;
+            ty.material = std::int32_t(accel.material(rh.hit.geomID, rh.hit.primID));
+            const Brdf& fy = brdfs[std::size_t(ty.material)];
+            const float lu[3] = {u(b.x, b.sample, 3), u(b.x, b.sample, 4), u(b.x, b.sample, 5)};
+            Vec3f dY(0, 0, 0), sY(0, 0, 0);
+            directLightAt(scene, ty, -b.wi, fy, cfg.eps, lu, true, dY, sY, rays, media);
+            Vec3f leaving = fy.kd * dY + fy.ks * sY;
+            if (media) leaving *= media->along(t.position + t.normal * cfg.eps, b.wi, tHit);
+            const Vec3f radiance = leaving * ((1.0f - cfg.gmax / G) * b.cosX / (b.pdf * float(samples)));
+            LightTexel& out = light[std::size_t(y) * g.width + b.x];
+            out.indirectD += radiance * float(1 / M_PI);
+            if (fx.glossy()) out.indirectS += radiance * fx.lobe(wo, b.wi, t.normal);
         }
         counters.add(kRaysBiasCompensation, rays);
         if (media) media->report(counters);
