@@ -103,16 +103,14 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
     mask.voxelizeActiveTiles();
     float value[kMaxLeafReach + 1];
     for (int k = 0; k <= K; ++k) value[k] = ringDistance(k, ctx, cap);
-    auto leaves = leavesNear<FloatTree::LeafNodeType>(mask, K, [&](const Coord& origin, const std::uint8_t* d) {
+    FloatGrid::Ptr distance = FloatGrid::create(cap);
+    distance->setTransform(features.transform().copy());
+    addLeavesNear(distance->tree(), mask, K, [&](const Coord& origin, const std::uint8_t* d) {
         auto leaf = std::make_unique<FloatTree::LeafNodeType>(origin, cap, false);
         for (Index n = 0; n < FloatTree::LeafNodeType::SIZE; ++n)
             if (d[n] <= K) leaf->setValueOn(n, value[d[n]]);
         return leaf;
     });
-    FloatGrid::Ptr distance = FloatGrid::create(cap);
-    distance->setTransform(features.transform().copy());
-    for (auto& leaf : leaves)
-        if (leaf) distance->tree().addLeaf(leaf.release());
     return fieldOf(distance, cap);
 }
 

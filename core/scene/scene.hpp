@@ -53,6 +53,10 @@ struct Scene {
     Camera cameraAt(double u) const;
     // Whether the camera moves while the shutter is open (motion blur).
     bool cameraMoves() const;
+    // The ray frame of a width x height render, built once, where the camera
+    // holds still all frame long; none where it moves (rays then come from
+    // cameraAt(time)).
+    std::optional<CameraRays> stillCameraRays(int width, int height) const;
     // Whether a volume moves by its velocity while the shutter is open.
     bool volumesMove() const;
     // Adds a mesh, moving its materials into the scene's table.

@@ -600,6 +600,11 @@ Camera Scene::cameraAt(double u) const {
     return cameraPath.keys.size() < 2 || shutter.instant() ? camera : cameraPath.at(shutter.frameTime(frame, u));
 }
 
+std::optional<CameraRays> Scene::stillCameraRays(int width, int height) const {
+    if (cameraMoves()) return std::nullopt;
+    return CameraRays(cameraAt(0), width, height);
+}
+
 bool Scene::cameraMoves() const {
     if (cameraPath.keys.size() < 2 || shutter.instant()) return false;
     const double open = shutter.frameTime(frame, 0), close = shutter.frameTime(frame, 1);

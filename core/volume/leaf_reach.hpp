@@ -46,10 +46,11 @@ private:
 std::vector<openvdb::Coord> leafOriginsNear(const openvdb::MaskTree& mask, int reach);
 
 // make(origin, distances) for every leaf with a voxel within `reach` of the
-// mask, in parallel; the leaves it returns, in leafOriginsNear's order
-// (null where none was within reach or make returned null).
-template <class Leaf, class Make>
-std::vector<std::unique_ptr<Leaf>> leavesNear(const openvdb::MaskTree& mask, int reach, const Make& make) {
+// mask, in parallel; the leaves it returns (a std::unique_ptr to one of
+// tree's leaves, or null) are then added to `tree`.
+template <class Tree, class Make>
+void addLeavesNear(Tree& tree, const openvdb::MaskTree& mask, int reach, const Make& make) {
+    using Leaf = typename Tree::LeafNodeType;
     const std::vector<openvdb::Coord> origins = leafOriginsNear(mask, reach);
     std::vector<std::unique_ptr<Leaf>> leaves(origins.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -57,7 +58,8 @@ std::vector<std::unique_ptr<Leaf>> leavesNear(const openvdb::MaskTree& mask, int
         for (std::size_t i = r.begin(); i != r.end(); ++i)
             if (const std::uint8_t* d = distances.of(mask, origins[i])) leaves[i] = make(origins[i], d);
     });
-    return leaves;
+    for (auto& leaf : leaves)
+        if (leaf) tree.addLeaf(leaf.release());
 }
 
 }  // namespace weft

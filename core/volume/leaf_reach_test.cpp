@@ -37,15 +37,13 @@ TEST(LeafReach, GrowingLeafByLeafIsOpenVdbsDilation) {
         mask.voxelizeActiveTiles();
         openvdb::MaskTree expected = mask;
         if (reach > 0) openvdb::tools::dilateActiveValues(expected, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::EXPAND_TILES);
-        auto leaves = leavesNear<openvdb::MaskTree::LeafNodeType>(mask, reach, [&](const Coord& origin, const std::uint8_t* d) {
+        openvdb::MaskTree grown(false);
+        addLeavesNear(grown, mask, reach, [&](const Coord& origin, const std::uint8_t* d) {
             auto leaf = std::make_unique<openvdb::MaskTree::LeafNodeType>(origin, false);
             for (openvdb::Index n = 0; n < openvdb::MaskTree::LeafNodeType::SIZE; ++n)
                 if (d[n] <= reach) leaf->setValueOn(n);
             return leaf;
         });
-        openvdb::MaskTree grown(false);
-        for (auto& leaf : leaves)
-            if (leaf) grown.addLeaf(leaf.release());
         EXPECT_EQ(grown.activeVoxelCount(), expected.activeVoxelCount()) << reach;
         openvdb::MaskTree diff = grown;
         diff.topologyDifference(expected);

@@ -131,9 +131,8 @@ public:
 
             Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o,
                    const MeshAccel* a, float e, const MarchSettings& m)
-                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_ ? &*r.skipper_ : nullptr) {
-                if (!scene.cameraMoves()) rays.emplace(scene.cameraAt(0), s.width, s.height);
-            }
+                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_ ? &*r.skipper_ : nullptr),
+                  rays(sc.stillCameraRays(st.width, st.height)) {}
             Rgba operator()(const CameraSample& c) {
                 const Ray ray = rays ? rays->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
                 float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.5f;

@@ -38,14 +38,12 @@ openvdb::FloatGrid::Ptr cacheTopology(const openvdb::FloatGrid& density, int fac
     }
     coarse.voxelizeActiveTiles();
     using Leaf = openvdb::FloatTree::LeafNodeType;
-    auto leaves = leavesNear<Leaf>(coarse, 1, [](const openvdb::Coord& origin, const std::uint8_t* d) {
+    addLeavesNear(cache->tree(), coarse, 1, [](const openvdb::Coord& origin, const std::uint8_t* d) {
         auto leaf = std::make_unique<Leaf>(origin, 0.0f, false);
         for (openvdb::Index n = 0; n < Leaf::SIZE; ++n)
             if (d[n] <= 1) leaf->setValueOn(n);
         return leaf;
     });
-    for (auto& leaf : leaves)
-        if (leaf) cache->tree().addLeaf(leaf.release());
     return cache;
 }
 

@@ -70,10 +70,16 @@ public:
         ScatterTracer tracer(scene, params_, std::move(volumes), accel, accel ? rayEpsilon(scene) : 0.0f);
         if (params_.estimator == ShadowEstimator::Cached) tracer.buildCaches(ctx);
         const ImagePlane plane(plane_, s);
-        return plane.render(ctx, "volume.singlescatter", [&] { return Shader{*this, scene, tracer, s, accel != nullptr, tracer.row()}; });
+        return plane.render(ctx, "volume.singlescatter", [&] { return Shader{*this, scene, tracer, s, accel != nullptr, tracer.row(), 0, stillCamera(scene, s)}; });
     }
 
 private:
+    // compat=vdb_render's camera stands still; the scene's moves along its keys.
+    std::optional<CameraRays> stillCamera(const Scene& scene, const RenderSettings& s) const {
+        if (params_.camera) return CameraRays(*params_.camera, s.width, s.height);
+        return scene.stillCameraRays(s.width, s.height);
+    }
+
     // One per row: the tracer's row state. A camera sample is one primary
     // ray; its offset along the ray and its generator are keyed by
     // (pixel, sample index). Summed in double, as before the image plane.
@@ -85,7 +91,7 @@ private:
         bool meshes;
         std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> row;
         std::int64_t rays = 0;
-        std::optional<CameraRays> still = std::nullopt;  // the camera's frame, where it holds all frame long
+        std::optional<CameraRays> still;  // the camera's frame, where it holds all frame long
 
         RgbaD operator()(const CameraSample& c) {
             Rng rng(hashCombine(s.seed, (std::uint64_t(c.py) * s.width + c.px) * 1024 + c.index));
@@ -93,9 +99,6 @@ private:
             Vec3d T(1.0);
             bool surface = false;
             ++rays;
-            // compat=vdb_render's camera stands still; the scene's moves along its keys.
-            if (!still && (self.params_.camera || !scene.cameraMoves()))
-                still.emplace(self.params_.camera.value_or(scene.cameraAt(0)), s.width, s.height);
             const Ray ray = still ? still->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
             const double time = scene.shutter.frameTime(0, c.time);
             const Vec3d L = tracer.radiance(ray, offset, time, *row, rng, T, surface);
