@@ -10,12 +10,25 @@ namespace {
 
 constexpr std::size_t kLarge = (std::size_t(3) << 20) / sizeof(float) + 7;  // over the threshold, not a whole page
 
-TEST(LargeBuffer, LargeBuffersAreZeroedAndAlignedToHugePages) {
+std::uintptr_t pastHugePage(const void* p) { return reinterpret_cast<std::uintptr_t>(p) % (std::uintptr_t(2) << 20); }
+
+TEST(LargeBuffer, LargeBuffersAreZeroedAndStartJustPastAHugePage) {
     LargeBuffer<float> big(kLarge);
-    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(big.data()) % (std::uintptr_t(2) << 20), 0u);
+    EXPECT_LT(pastHugePage(big.data()), 64u * 1024);  // a few cache lines past the boundary
+    EXPECT_EQ(pastHugePage(big.data()) % 64, 0u);    // whole cache lines
     EXPECT_TRUE(std::all_of(big.begin(), big.end(), [](float v) { return v == 0.0f; }));
     big.back() = 5.0f;  // the last element is writable
     EXPECT_EQ(big.back(), 5.0f);
+}
+
+// Buffers read side by side at one index must not share their cache sets.
+TEST(LargeBuffer, BuffersAllocatedTogetherStartAtDifferentOffsets) {
+    FreshBuffer<float> a(kLarge), b(kLarge), c(kLarge);
+    EXPECT_NE(pastHugePage(a.data()) % 4096, pastHugePage(b.data()) % 4096);
+    EXPECT_NE(pastHugePage(b.data()) % 4096, pastHugePage(c.data()) % 4096);
+    EXPECT_NE(pastHugePage(a.data()) % 4096, pastHugePage(c.data()) % 4096);
+    c.back() = 1.0f;  // all of each is mapped
+    EXPECT_EQ(c.back(), 1.0f);
 }
 
 TEST(LargeBuffer, SmallBuffersAndGrowthKeepValues) {

@@ -33,8 +33,10 @@ private:
 
 // Front-to-back compositing of pre-integrated segments (Kraus et al. Fig. 8):
 // opacity-weighted colour C and opacity alpha.
+// Trivial, so that a frame of them can arrive zeroed (zeroedBuffer); write
+// `SegmentCompositor c{}` for an empty one.
 struct SegmentCompositor {
-    float r = 0, g = 0, b = 0, a = 0;
+    float r, g, b, a;
     void add(const PreintSample& s) {
         const float t = 1.0f - a;
         r += t * s.r, g += t * s.g, b += t * s.b, a += t * s.a;

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/large_buffer.hpp"
 #include "core/scene/camera.hpp"
 #include "core/volume/slice_volumes.hpp"
 #include "core/volume/volume.hpp"
@@ -47,10 +48,10 @@ SliceRay sliceRayOf(const Ray& world, const Volume& volume, const SliceSetup& sl
 // centre of its 2^l x 2^l block of level-0 pixels.
 struct LevelRays {
     int width = 0, height = 0;
-    std::vector<Vec3d> dir;         // index space, unit length
+    FreshBuffer<Vec3d> dir;         // index space, unit length (all three filled whole in parallel)
     // Slices inside each volume's index box (first > last: none), volume-major:
     // volume k of pixel i at k * pixels + i, so volume 0 is first[i].
-    std::vector<int> first, last;
+    FreshBuffer<int> first, last;
     int index(int x, int y) const { return y * width + x; }
     int firstOf(int k, int i) const { return first[std::size_t(k) * dir.size() + i]; }
     int lastOf(int k, int i) const { return last[std::size_t(k) * dir.size() + i]; }

@@ -1,5 +1,8 @@
 #include "plugins/volume_adaptive3d/pyramid.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,11 +15,27 @@ const Counter kOracleSamples{"oracle.samples", "oracle lookups (the paper's SAMP
 const Counter kSynthesisOps{"synthesis.ops", "per-pixel syntheses of data and oracle (the paper's SYNTHESIZE)"};
 const IndexedCounter kVolumeSamplesLevel{"volume.samples.level", "volume lookups at pyramid level N"};
 
+// Sets [begin, begin + n) to `value` in parallel: a fresh buffer's pages
+// are then first touched on every thread, not all on one.
+template <class T>
+void fillInParallel(T* begin, std::size_t n, T value) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t(1) << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::fill(begin + r.begin(), begin + r.end(), value);
+    });
+}
+
+template <class T>
+FreshBuffer<T> filledBuffer(std::size_t n, T value) {
+    FreshBuffer<T> b(n);
+    fillInParallel(b.data(), n, value);
+    return b;
+}
+
 // Each volume's background scalar repeated for every pixel, volume-major.
-std::vector<float> backgrounds(const std::vector<SliceVolume>& volumes, std::size_t pixels) {
-    std::vector<float> s;
-    s.reserve(pixels * volumes.size());
-    for (const SliceVolume& v : volumes) s.insert(s.end(), pixels, float(v.volume->tf.normalize(v.volume->grid->background())));
+FreshBuffer<float> backgrounds(const std::vector<SliceVolume>& volumes, std::size_t pixels) {
+    FreshBuffer<float> s(pixels * volumes.size());
+    for (std::size_t k = 0; k < volumes.size(); ++k)
+        fillInParallel(s.data() + k * pixels, pixels, float(volumes[k].volume->tf.normalize(volumes[k].volume->grid->background())));
     return s;
 }
 
@@ -30,7 +49,7 @@ Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, 
         level.rays = makeLevelRays(camera, volumes, slices, l, paddedWidth, paddedHeight, imageWidth, imageHeight);
         level.s = backgrounds(volumes, level.rays.dir.size());
         if (emits) level.e.assign(level.s.size(), Vec3f(0.0f));
-        level.d.assign(level.rays.dir.size(), 1.0f);
+        level.d = filledBuffer(level.rays.dir.size(), 1.0f);
         level.tilesX = (level.rays.width + kTile - 1) / kTile;
         level.tilesY = (level.rays.height + kTile - 1) / kTile;
         level.tileDueLevel.assign(std::size_t(level.tilesX) * level.tilesY, 0);
@@ -40,8 +59,8 @@ Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, 
     const std::size_t n = levels_[0].rays.dir.size();
     sPrev = backgrounds(volumes, n);
     if (emits) ePrev.assign(sPrev.size(), Vec3f(0.0f));
-    iPrev.assign(n, 0);
-    color.assign(n, SegmentCompositor{});
+    iPrev = filledBuffer(n, 0);
+    color = zeroedBuffer<SegmentCompositor>(n);
 }
 
 void Pyramid::setSurfaces(std::vector<double> tHit, const SliceSetup& slices) {
@@ -74,12 +93,13 @@ void Pyramid::setSurfaces(std::vector<double> tHit, const SliceSetup& slices) {
 
 Image Pyramid::image(int width, int height) const {
     Image img = Image::rgba(width, height);
-    for (int y = 0; y < height; ++y)
+    tbb::parallel_for(0, height, [&](int y) {
         for (int x = 0; x < width; ++x) {
             const SegmentCompositor& c = color[levels_[0].rays.index(x, y)];
             float* px = img.pixel(x, y);
             px[0] = c.r, px[1] = c.g, px[2] = c.b, px[3] = c.a;
         }
+    });
     return img;
 }
 

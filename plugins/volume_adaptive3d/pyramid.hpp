@@ -38,9 +38,9 @@ inline std::uint8_t dueLevel(float d) { return std::uint8_t(std::bit_width(unsig
 
 struct PyramidLevel {
     LevelRays rays;
-    std::vector<float> s;  // normalised data value, [volume * pixels + pixel]
+    FreshBuffer<float> s;  // normalised data value, [volume * pixels + pixel]
     std::vector<Vec3f> e;  // emission, laid out as s; empty when no volume emits
-    std::vector<float> d;  // sampling distance, slices
+    FreshBuffer<float> d;  // sampling distance, slices
     int tilesX = 0, tilesY = 0;
     std::vector<std::uint8_t> tileDueLevel;  // min dueLevel(d) over the tile
     // Angle between neighbouring level-0 rays: at distance t from the eye
@@ -71,10 +71,10 @@ public:
     PyramidLevel& level(int l) { return levels_[l]; }
     const PyramidLevel& level(int l) const { return levels_[l]; }
     // Level-0 compositing state.
-    std::vector<float> sPrev;  // [volume * pixels + pixel]
+    FreshBuffer<float> sPrev;  // [volume * pixels + pixel]
     std::vector<Vec3f> ePrev;  // the same for emission; empty when no volume emits
-    std::vector<int> iPrev;
-    std::vector<SegmentCompositor> color;
+    FreshBuffer<int> iPrev;
+    FreshBuffer<SegmentCompositor> color;
     SurfaceSlices surfaces;
     // Fills `surfaces` from level 0's distances (infinity: no surface).
     void setSurfaces(std::vector<double> tHit, const SliceSetup& slices);

@@ -182,7 +182,7 @@ private:
                 from = std::min(from, shifted ? first[k] - 1 : std::max(first[k] - 1, 0));
                 to = std::max(to, shifted ? last[k] + 1 : std::min(last[k] + 1, slices.imax));
             }
-            SegmentCompositor acc;
+            SegmentCompositor acc{};
             if (from > to) return acc;
             const Vec3d dir = sliceRayOf(worldRay, reference, slices).dir;
             auto position = [&](int k) { return slices.t(k) + shift * slices.spacing; };
