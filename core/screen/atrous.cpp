@@ -2,10 +2,13 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "core/base/error.hpp"
+#include "core/base/large_buffer.hpp"
 #include "core/mesh/mesh_accel.hpp"
 
 namespace weft {
@@ -17,8 +20,8 @@ constexpr int kMaxLevels = 24;  // taps 2^23 pixels apart already miss any image
 bool finite3(const float* c) { return std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]); }
 
 // Non-finite colours become missing samples (valid = 0, value 0).
-std::vector<std::uint8_t> markValid(std::vector<float>& color) {
-    std::vector<std::uint8_t> valid(color.size() / 3, 1);
+std::vector<std::uint8_t> markValid(float* color, std::size_t size) {
+    std::vector<std::uint8_t> valid(size / 3, 1);
     for (std::size_t i = 0; i < valid.size(); ++i)
         if (!finite3(&color[3 * i])) valid[i] = 0, color[3 * i] = color[3 * i + 1] = color[3 * i + 2] = 0;
     return valid;
@@ -28,8 +31,8 @@ struct Level {
     int width, height, step;
     float invColor, invNormal, invPosition;  // 1/sigma^2, 0 when off
     const GeometryGuides& guides;
-    const std::vector<float>& in;
-    const std::vector<std::uint8_t>& validIn;
+    const float* in;
+    const std::uint8_t* validIn;
     const float* tapWeight;  // per pixel, multiplies each tap; null: 1
 };
 
@@ -104,33 +107,41 @@ void validate(const AtrousSettings& s) {
     if (!(s.colorDecay > 0 && s.colorDecay <= 1)) throw Error("atrous: color decay must be in (0, 1]");
 }
 
-void atrousFilter(std::vector<float>& color, int width, int height, const GeometryGuides& guides,
+void atrousFilter(float* color, std::size_t size, int width, int height, const GeometryGuides& guides,
                   const AtrousSettings& s, const TapWeights& tapWeights) {
     validate(s);
     const std::size_t pixels = std::size_t(width) * height;
-    if (color.size() != 3 * pixels) throw Error("atrous: colour buffer does not match the image size");
+    if (size != 3 * pixels) throw Error("atrous: colour buffer does not match the image size");
     checkTapWeights(tapWeights, pixels);
     checkGuide(guides.normal, s.sigmaNormal, pixels, "normal");
     checkGuide(guides.position, s.sigmaPosition, pixels, "position");
-    std::vector<std::uint8_t> valid = markValid(color), validNext(pixels);
-    std::vector<float> next(color.size());
+    // Levels read one buffer and write the other. The second arrives
+    // uncleared and is first written by the level's rows on every thread.
+    std::vector<std::uint8_t> valid = markValid(color, size);
+    FreshBuffer<std::uint8_t> validNext(pixels);
+    FreshBuffer<float> next(size);
+    float* in = color;
+    float* out = next.data();
+    std::uint8_t* validIn = valid.data();
+    std::uint8_t* validOut = validNext.data();
     float sigmaColor = s.sigmaColor;
     for (int level = 0; level < s.levels; ++level) {
         const bool weighted = !tapWeights.perPixel.empty() && level < tapWeights.levels;
         const Level l{width, height, 1 << level, inverseSquare(sigmaColor), inverseSquare(s.sigmaNormal),
-                      inverseSquare(s.sigmaPosition), guides, color, valid,
+                      inverseSquare(s.sigmaPosition), guides, in, validIn,
                       weighted ? tapWeights.perPixel.data() : nullptr};
         tbb::parallel_for(0, height, [&](int y) {
             enableFastFloatMode();  // every thread the same: tiny weights flush to 0 alike
             for (int x = 0; x < width; ++x) {
                 const std::size_t p = std::size_t(y) * width + x;
-                validNext[p] = filterPixel(l, x, y, &next[3 * p]) ? 1 : 0;
+                validOut[p] = filterPixel(l, x, y, &out[3 * p]) ? 1 : 0;
             }
         });
-        color.swap(next);
-        valid.swap(validNext);
+        std::swap(in, out);
+        std::swap(validIn, validOut);
         if (sigmaColor != AtrousSettings::kOff) sigmaColor *= s.colorDecay;
     }
+    if (in != color) std::copy(next.begin(), next.end(), color);  // an odd number of levels ended in `next`
 }
 
 namespace {

@@ -67,8 +67,12 @@ struct TapWeights {
 };
 
 // Filters `color` (3 floats per pixel, row-major, width x height) in place.
-void atrousFilter(std::vector<float>& color, int width, int height, const GeometryGuides& guides,
+void atrousFilter(float* color, std::size_t size, int width, int height, const GeometryGuides& guides,
                   const AtrousSettings& settings, const TapWeights& tapWeights = {});
+inline void atrousFilter(std::vector<float>& color, int width, int height, const GeometryGuides& guides,
+                         const AtrousSettings& settings, const TapWeights& tapWeights = {}) {
+    atrousFilter(color.data(), color.size(), width, height, guides, settings, tapWeights);
+}
 
 // The B3-spline taps h(-2..2).
 constexpr std::array<float, 5> kB3Taps = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};

@@ -43,6 +43,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/base/large_buffer.hpp"
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/delta_lights.hpp"
 #include "core/mesh/mesh_accel.hpp"
@@ -89,14 +90,16 @@ Params readParams(const ParamSet& p) {
 
 // The incident indirect irradiance of every pixel: the mean of its samples,
 // NaN (a missing sample for the filter) where it has none.
-std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est, const std::vector<std::uint32_t>& counts,
+FreshBuffer<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est, const std::vector<std::uint32_t>& counts,
                                   std::int64_t batchSize, std::uint64_t seed, const VolumeAttenuation& volumes,
                                   Counters& counters) {
     const std::vector<std::int64_t> offsets = exclusiveScan(counts);
     const SampleBatches batches(offsets, batchSize > 0 ? batchSize : std::int64_t(counts.size()));
-    std::vector<float> sums(3 * counts.size(), 0.0f);
+    // Neither buffer is cleared: the passes below write every entry they
+    // read, so their pages are first touched on every thread at once.
+    FreshBuffer<float> sums(3 * counts.size());
     std::vector<std::uint32_t> samplePixel;
-    std::vector<Vec3f> results;
+    FreshBuffer<Vec3f> results;
     for (std::int64_t b = 0; b < batches.count(); ++b) {
         batches.fill(b, samplePixel);
         results.resize(samplePixel.size());
@@ -115,11 +118,16 @@ std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
             counters.add(kRaysIndirect, rays.bounce), counters.add(kRaysShadow, rays.shadow);
             if (media) media->report(counters);
         });
-        // Store: each pixel adds its samples in order, so batches change nothing.
+        // Store: each pixel adds its samples in order, so batches change
+        // nothing; the batch holding a pixel's first sample starts its sum.
         batches.forEachPixelRun(b, [&](std::uint32_t pixel, std::int64_t s0, std::int64_t s1) {
             enableFastFloatMode();
-            for (std::int64_t s = s0; s < s1; ++s)
-                for (int c = 0; c < 3; ++c) sums[3 * pixel + c] += results[std::size_t(s - b0)][c];
+            const bool first = s0 == offsets[pixel];
+            for (int c = 0; c < 3; ++c) {
+                float sum = first ? 0.0f : sums[3 * pixel + c];
+                for (std::int64_t s = s0; s < s1; ++s) sum += results[std::size_t(s - b0)][c];
+                sums[3 * pixel + c] = sum;
+            }
         });
     }
     tbb::parallel_for(std::size_t(0), counts.size(), [&](std::size_t i) {
@@ -128,6 +136,15 @@ std::vector<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
     });
     counters.add(kSamplesIndirect, offsets.back());
     return sums;
+}
+
+// A copy whose pages every thread touches first, not one.
+FreshBuffer<float> copyInParallel(const FreshBuffer<float>& from) {
+    FreshBuffer<float> to(from.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), std::size_t(1) << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::copy(from.begin() + std::ptrdiff_t(r.begin()), from.begin() + std::ptrdiff_t(r.end()), to.begin() + std::ptrdiff_t(r.begin()));
+    });
+    return to;
 }
 
 class AdaptiveIndirect final : public Technique {
@@ -147,7 +164,7 @@ public:
         std::vector<float> importance(g.texels.size(), 0.0f);
         const std::vector<std::uint32_t> counts = sampleCounts(guides, active, importance, s, ctx);
         const IndirectEstimator est(scene, p_.bounces, p_.rrDepth);
-        std::vector<float> raw;
+        FreshBuffer<float> raw;
         const VolumeAttenuation volumes(scene, p_.volumeStep);
         std::vector<Vec3f> eyeT;
         if (volumes.active()) {
@@ -155,10 +172,10 @@ public:
             eyeT = cameraTransmittance(scene, g, volumes, ctx.counters);
         }
         { ScopedTimer t(ctx.timings, "IS.indirect"); raw = sampleIndirect(g, est, counts, p_.batch, s.seed, volumes, ctx.counters); }
-        std::vector<float> filtered = raw;
+        FreshBuffer<float> filtered = copyInParallel(raw);
         if (p_.mode != Mode::Uniform) {
             ScopedTimer t(ctx.timings, "AT.atrous");
-            atrousFilter(filtered, g.width, g.height, guides, p_.atrous, countWeights(counts));
+            atrousFilter(filtered.data(), filtered.size(), g.width, g.height, guides, p_.atrous, countWeights(counts));
         }
         ScopedTimer t(ctx.timings, "C.compose");
         return compose(scene, g, est, raw, filtered, importance, counts, s.seed, volumes, eyeT, ctx.counters);
@@ -198,8 +215,8 @@ private:
         return std::move(c.counts);
     }
 
-    Image compose(const Scene& scene, const GBuffer& g, const IndirectEstimator& est, const std::vector<float>& raw,
-                  const std::vector<float>& filtered, const std::vector<float>& importance,
+    Image compose(const Scene& scene, const GBuffer& g, const IndirectEstimator& est, const FreshBuffer<float>& raw,
+                  const FreshBuffer<float>& filtered, const std::vector<float>& importance,
                   const std::vector<std::uint32_t>& counts, std::uint64_t seed, const VolumeAttenuation& volumes,
                   const std::vector<Vec3f>& eyeT, Counters& counters) const {
         Image img(g.width, g.height, {"R", "G", "B", "A", "indirect.R", "indirect.G", "indirect.B", "indirect_raw.R",
