@@ -311,6 +311,12 @@ EmissionWeights PreintegrationTable::integrateEmission(const TransferFunction& t
     return {weight(m.front), weight(m.back)};
 }
 
+struct PreintegrationTable::Integrator {
+    explicit Integrator(const TransferFunction& f) : tf(f), segment(tf) {}
+    TransferFunction tf;  // a copy: blocks are built after the caller's may be gone
+    SegmentIntegrator segment;
+};
+
 PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector<double> lengths, int resolution,
                                          PreintPrecision precision, bool withEmission)
     : lengths_(std::move(lengths)), resolution_(resolution), precision_(precision) {
@@ -322,31 +328,65 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector
     if (resolution_ < 2 || resolution_ > kMaxResolution)
         throw Error("pre-integration table: resolution must be in [2, " + std::to_string(kMaxResolution) +
                     "], got " + std::to_string(resolution_));
-
-    const SegmentIntegrator integrator(tf);
-    auto emissionEntry = [&](const SegmentIntegrator& in, double sFront, double sBack, double length) {
-        const EmissionMoments m = in.emission(sFront, sBack, length);
-        EmissionWeights w{float(m.front), float(m.back)};  // both in [0, 1]: the same 8-bit emulation applies
-        if (precision_ == PreintPrecision::Bits8) w = {quantize8(w.front), quantize8(w.back)};
-        return w;
-    };
+    integrator_ = std::make_unique<Integrator>(tf);
+    blocksPerAxis_ = std::size_t((resolution_ + kPreintBlock - 1) / kPreintBlock);
+    const std::size_t blocks = lengths_.size() * blocksPerAxis_ * blocksPerAxis_;
+    blockState_ = std::make_unique<std::atomic<std::uint8_t>[]>(blocks);
+    for (std::size_t b = 0; b < blocks; ++b) blockState_[b].store(kEmpty, std::memory_order_relaxed);
     table_.resize(lengths_.size() * size_t(resolution_) * size_t(resolution_));
     if (withEmission) emission_.resize(table_.size());
-    const int rows = lengthCount() * resolution_;
-    const double toS = 1.0 / (resolution_ - 1);
-    // Every entry depends only on its own indices, so the result is the same for any thread count.
-    tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
-        for (int row = range.begin(); row != range.end(); ++row) {
-            const int li = row / resolution_, front = row % resolution_;
-            PreintSample* out = &table_[size_t(row) * resolution_];
-            for (int back = 0; back < resolution_; ++back) {
-                PreintSample e = integrator.integrate(front * toS, back * toS, lengths_[li]);
-                if (precision_ == PreintPrecision::Bits8) e = {quantize8(e.r), quantize8(e.g), quantize8(e.b), quantize8(e.a)};
-                out[back] = e;
-                if (withEmission) emission_[size_t(row) * resolution_ + back] = emissionEntry(integrator, front * toS, back * toS, lengths_[li]);
-            }
+}
+
+PreintegrationTable::~PreintegrationTable() = default;
+
+// One block's entries; the first thread to need it builds it, others wait.
+void PreintegrationTable::buildBlock(std::size_t block) const {
+    std::atomic<std::uint8_t>& state = blockState_[block];
+    std::uint8_t expected = kEmpty;
+    if (!state.compare_exchange_strong(expected, kBuilding, std::memory_order_acquire)) {
+        for (std::uint8_t now = expected; now != kBuilt; now = state.load(std::memory_order_acquire)) state.wait(now, std::memory_order_acquire);
+        return;
+    }
+    const std::size_t perLength = blocksPerAxis_ * blocksPerAxis_;
+    const int li = int(block / perLength);
+    const int front0 = int(block % perLength / blocksPerAxis_) * kPreintBlock, back0 = int(block % blocksPerAxis_) * kPreintBlock;
+    const int front1 = std::min(resolution_, front0 + kPreintBlock), back1 = std::min(resolution_, back0 + kPreintBlock);
+    const double toS = 1.0 / (resolution_ - 1), length = lengths_[std::size_t(li)];
+    const SegmentIntegrator& in = integrator_->segment;
+    for (int front = front0; front < front1; ++front)
+        for (int back = back0; back < back1; ++back) {
+            const std::size_t at = (std::size_t(li) * resolution_ + std::size_t(front)) * resolution_ + std::size_t(back);
+            PreintSample e = in.integrate(front * toS, back * toS, length);
+            if (precision_ == PreintPrecision::Bits8) e = {quantize8(e.r), quantize8(e.g), quantize8(e.b), quantize8(e.a)};
+            table_[at] = e;
+            if (emission_.empty()) continue;
+            const EmissionMoments m = in.emission(front * toS, back * toS, length);
+            EmissionWeights w{float(m.front), float(m.back)};  // both in [0, 1]: the same 8-bit emulation applies
+            if (precision_ == PreintPrecision::Bits8) w = {quantize8(w.front), quantize8(w.back)};
+            emission_[at] = w;
         }
+    state.store(kBuilt, std::memory_order_release);
+    state.notify_all();
+}
+
+void PreintegrationTable::buildAll() const {
+    const std::size_t blocks = lengths_.size() * blocksPerAxis_ * blocksPerAxis_;
+    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+        if (blockState_[b].load(std::memory_order_acquire) != kBuilt) buildBlock(b);
     });
+    complete_.store(true, std::memory_order_release);
+}
+
+std::int64_t PreintegrationTable::entriesBuilt() const {
+    std::int64_t n = 0;
+    const std::size_t perLength = blocksPerAxis_ * blocksPerAxis_;
+    for (std::size_t b = 0; b < lengths_.size() * perLength; ++b) {
+        if (blockState_[b].load(std::memory_order_acquire) != kBuilt) continue;
+        const int rows = std::min(kPreintBlock, resolution_ - int(b % perLength / blocksPerAxis_) * kPreintBlock);
+        const int columns = std::min(kPreintBlock, resolution_ - int(b % blocksPerAxis_) * kPreintBlock);
+        n += std::int64_t(rows) * columns;
+    }
+    return n;
 }
 
 double PreintegrationTable::length(int index) const {
@@ -359,6 +399,7 @@ namespace {
 
 // The four table entries around (sFront, sBack) and their bilinear weights.
 struct Bilinear {
+    int front, back;  // the cell's first entry
     std::size_t i00, i01, i10, i11;
     float tx, ty;
     // (1 - t) a + t b returns an entry exactly at t = 0 and t = 1.
@@ -374,12 +415,21 @@ Bilinear bilinear(int lengthIndex, int lengthCount, int resolution, float sFront
     const float x = gridCoord(sFront, resolution), y = gridCoord(sBack, resolution);
     const int i = std::min(int(x), resolution - 2), j = std::min(int(y), resolution - 2);
     const std::size_t base = (std::size_t(lengthIndex) * resolution + i) * resolution + j;
-    return {base, base + 1, base + resolution, base + resolution + 1, x - float(i), y - float(j)};
+    return {i, j, base, base + 1, base + resolution, base + resolution + 1, x - float(i), y - float(j)};
 }
 
 }  // namespace
 
 PreintSample PreintegrationTable::lookup(int lengthIndex, float sFront, float sBack) const {
+    const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
+    needCell(lengthIndex, b.front, b.back);
+    const PreintSample &e00 = table_[b.i00], &e01 = table_[b.i01], &e10 = table_[b.i10], &e11 = table_[b.i11];
+    return {b.mix(e00.r, e01.r, e10.r, e11.r), b.mix(e00.g, e01.g, e10.g, e11.g), b.mix(e00.b, e01.b, e10.b, e11.b),
+            b.mix(e00.a, e01.a, e10.a, e11.a)};
+}
+
+PreintSample PreintegrationTable::lookupComplete(int lengthIndex, float sFront, float sBack) const {
+    if (!complete_.load(std::memory_order_relaxed)) return lookup(lengthIndex, sFront, sBack);  // not built whole after all
     const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
     const PreintSample &e00 = table_[b.i00], &e01 = table_[b.i01], &e10 = table_[b.i10], &e11 = table_[b.i11];
     return {b.mix(e00.r, e01.r, e10.r, e11.r), b.mix(e00.g, e01.g, e10.g, e11.g), b.mix(e00.b, e01.b, e10.b, e11.b),
@@ -389,6 +439,7 @@ PreintSample PreintegrationTable::lookup(int lengthIndex, float sFront, float sB
 EmissionWeights PreintegrationTable::lookupEmission(int lengthIndex, float sFront, float sBack) const {
     if (emission_.empty()) throw Error("internal: pre-integration table built without emission");
     const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
+    needCell(lengthIndex, b.front, b.back);
     const EmissionWeights &e00 = emission_[b.i00], &e01 = emission_[b.i01], &e10 = emission_[b.i10], &e11 = emission_[b.i11];
     const float length = float(lengths_[lengthIndex]);
     return {b.mix(e00.front, e01.front, e10.front, e11.front) * length, b.mix(e00.back, e01.back, e10.back, e11.back) * length};

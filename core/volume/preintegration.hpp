@@ -33,7 +33,10 @@
 // one without emission builds nothing more. For constant extinction tau
 // and e_front == e_back, E = e (1 - exp(-tau L)) / tau, the slab's closed
 // form and volume.raymarch's segment.
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/base/large_buffer.hpp"
@@ -53,6 +56,13 @@ struct EmissionWeights {
     float front, back;
 };
 
+// Entries are integrated block by block (kPreintBlock x kPreintBlock of one
+// length) when a lookup first needs them, so a render pays only for the
+// (s_front, s_back) pairs its data hold: a volume's values fill a small
+// part of the square, mostly near its diagonal. Every entry depends only on
+// its indices, so which thread builds it changes nothing.
+constexpr int kPreintBlock = 16;
+
 class PreintegrationTable {
 public:
     // Built only for the segment lengths (in voxels) a render uses, e.g.
@@ -62,6 +72,9 @@ public:
     // withEmission: also the emission weights (lookupEmission).
     PreintegrationTable(const TransferFunction& tf, std::vector<double> lengths, int resolution = 256,
                         PreintPrecision precision = PreintPrecision::Float32, bool withEmission = false);
+    ~PreintegrationTable();
+    PreintegrationTable(const PreintegrationTable&) = delete;
+    PreintegrationTable& operator=(const PreintegrationTable&) = delete;
 
     int lengthCount() const { return int(lengths_.size()); }
     double length(int index) const;
@@ -70,8 +83,12 @@ public:
     bool hasEmission() const { return !emission_.empty(); }
 
     // s in [0, 1] (tf.normalize(value)); bilinear interpolation between
-    // entries; out-of-range s clamped, NaN treated as 0.
+    // entries; out-of-range s clamped, NaN treated as 0. Builds the entries
+    // it reads when they are not built yet.
     PreintSample lookup(int lengthIndex, float sFront, float sBack) const;
+    // The same for a table built whole (buildAll), without the per-block
+    // check: for loops that look up on every sample.
+    PreintSample lookupComplete(int lengthIndex, float sFront, float sBack) const;
 
     // The exact segment integral in double precision (the reference, also
     // used to fill the table). s outside [0, 1] is clamped, NaN read as 0;
@@ -84,12 +101,44 @@ public:
     // The exact emission weights (as integrateSegment; also fills the table).
     static EmissionWeights integrateEmission(const TransferFunction& tf, double sFront, double sBack, double length);
 
+    // Entries integrated so far (of lengthCount() x resolution^2).
+    std::int64_t entriesBuilt() const;
+    // Integrates every entry not built yet, in parallel: for a render whose
+    // lookups cover the table, and after which lookups skip the check.
+    void buildAll() const;
+
 private:
+    struct Integrator;  // the transfer function's pieces, for building blocks
+    // Makes sure the block holding entry (lengthIndex, front, back) is built.
+    void need(int lengthIndex, int front, int back) const {
+        const std::size_t b = blockOf(lengthIndex, front, back);
+        if (blockState_[b].load(std::memory_order_acquire) != kBuilt) buildBlock(b);
+    }
+    // The four entries of a bilinear cell, whose rows and columns may lie in two blocks.
+    void needCell(int lengthIndex, int front, int back) const {
+        need(lengthIndex, front, back);
+        const bool nextRow = (front + 1) % kPreintBlock == 0, nextColumn = (back + 1) % kPreintBlock == 0;
+        if (nextRow) need(lengthIndex, front + 1, back);
+        if (nextColumn) need(lengthIndex, front, back + 1);
+        if (nextRow && nextColumn) need(lengthIndex, front + 1, back + 1);
+    }
+    std::size_t blockOf(int lengthIndex, int front, int back) const {
+        return (std::size_t(lengthIndex) * blocksPerAxis_ + std::size_t(front / kPreintBlock)) * blocksPerAxis_ +
+               std::size_t(back / kPreintBlock);
+    }
+    void buildBlock(std::size_t block) const;
+
+    static constexpr std::uint8_t kEmpty = 0, kBuilding = 1, kBuilt = 2;
     std::vector<double> lengths_;
     int resolution_ = 0;
     PreintPrecision precision_ = PreintPrecision::Float32;
-    FreshBuffer<PreintSample> table_;  // [length][front][back]; filled whole in parallel
-    FreshBuffer<EmissionWeights> emission_;  // the same layout, divided by the length; empty without emission
+    std::size_t blocksPerAxis_ = 0;
+    std::unique_ptr<Integrator> integrator_;
+    // Filled block by block on first use (need), hence mutable.
+    mutable std::unique_ptr<std::atomic<std::uint8_t>[]> blockState_;
+    mutable std::atomic<bool> complete_{false};  // every block built (buildAll)
+    mutable FreshBuffer<PreintSample> table_;  // [length][front][back]
+    mutable FreshBuffer<EmissionWeights> emission_;  // the same layout, divided by the length; empty without emission
 };
 
 }  // namespace weft

@@ -18,6 +18,12 @@ const PreintegrationTable& SegmentTables::forSlices(int slices) {
     return *tables_[slices];
 }
 
+std::int64_t SegmentTables::entriesBuilt() const {
+    std::int64_t n = 0;
+    for (const auto& t : tables_) n += t ? t->entriesBuilt() : 0;
+    return n;
+}
+
 int SegmentTables::builtCount() const {
     int n = 0;
     for (const auto& t : tables_) n += t != nullptr;

@@ -3,6 +3,7 @@
 // the first time a render asks for it: a render pays only for the lengths
 // it actually uses. Safe to call from parallel loops (threads that need a
 // table under construction help build it instead of blocking).
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -19,6 +20,7 @@ public:
                   bool withEmission = false);
     const PreintegrationTable& forSlices(int slices);
     int builtCount() const;
+    std::int64_t entriesBuilt() const;  // over every table, as PreintegrationTable::entriesBuilt
     bool withEmission() const { return withEmission_; }
 
 private:

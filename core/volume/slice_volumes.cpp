@@ -63,6 +63,12 @@ int SliceTables::builtCount() const {
     return n;
 }
 
+std::int64_t SliceTables::entriesBuilt() const {
+    std::int64_t n = 0;
+    for (const auto& s : sets_) n += s ? s->entriesBuilt() : 0;
+    return n;
+}
+
 int SliceTables::emissionBuiltCount() const {
     int n = 0;
     for (const auto& s : sets_) n += s && s->withEmission() ? s->builtCount() : 0;

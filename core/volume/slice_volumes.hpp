@@ -50,6 +50,7 @@ public:
     SegmentTables& of(const SliceVolume& v) { return *sets_[v.tables]; }
     int builtCount() const;
     int emissionBuiltCount() const;  // of those, the ones holding emission weights
+    std::int64_t entriesBuilt() const;  // table entries integrated, over every table
 
 private:
     std::vector<std::unique_ptr<SegmentTables>> sets_;

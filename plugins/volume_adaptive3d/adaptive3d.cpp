@@ -75,6 +75,7 @@ namespace weft {
 namespace {
 
 const Counter kPreintegrationTables{"preintegration.tables", "pre-integration tables built"};
+const Counter kPreintegrationEntries{"preintegration.entries", "pre-integration table entries integrated (in blocks, where lookups needed them)"};
 const Counter kOracleBuilt{"oracle.built", "oracle fields built by this render (one per volume)"};
 const Counter kShutterPasses{"shutter.passes", "volume passes at distinct shutter times (spp of them when a volume moves)"};
 const Counter kOracleReused{"oracle.reused", "oracle fields reused from an earlier render of this process (same volume, emission, transfer function, spacing, lmax, epsilon)"};
@@ -123,6 +124,7 @@ public:
         progress.finish();
         ctx.counters.add(kSlices, slices.imax + 1);
         ctx.counters.add(kPreintegrationTables, tables.builtCount());
+        ctx.counters.add(kPreintegrationEntries, tables.entriesBuilt());
         if (const int n = tables.emissionBuiltCount()) ctx.counters.add(kEmissionTables, n);
         if (scene.volumesMove()) ctx.counters.add(kShutterPasses, std::int64_t(times.size()));
         if (accel) shadeSurfaces(scene, *accel, surfaces.hits, pw, image, ctx);

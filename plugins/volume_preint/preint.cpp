@@ -113,7 +113,10 @@ public:
         const SliceSetup slices = makeSliceSetup(scene.camera, volumes, params_.spacing, 0);
         SliceTables tables(volumes, params_.spacing, 1, params_.tableResolution, params_.precision);
         std::vector<const PreintegrationTable*> oneSlice;
-        for (const SliceVolume& v : volumes) oneSlice.push_back(&tables.of(v).forSlices(1));
+        for (const SliceVolume& v : volumes) {
+            oneSlice.push_back(&tables.of(v).forSlices(1));
+            oneSlice.back()->buildAll();  // every sample looks one up: build it whole, up front
+        }
         std::optional<PatternSet> offsets;
         if (!offsetPattern_.empty()) offsets = makePatternSet(offsetPattern_, s.spp, hashCombine(s.seed, 0x0ff5));
         const MeshAccel* accel = scene.meshes.empty() ? nullptr : &scene.accel();  // built before the pixel loop
@@ -214,7 +217,7 @@ private:
                 }
                 scalars(k, cur, eCur);
                 for (int v = 0; v < n; ++v) {
-                    seg[v] = f.tables[v]->lookup(0, prev[v], cur[v]);
+                    seg[v] = f.tables[v]->lookupComplete(0, prev[v], cur[v]);
                     if (f.emits && (ePrev[v] != Vec3f(0.0f) || eCur[v] != Vec3f(0.0f)))
                         addEmission(seg[v], f.tables[v]->lookupEmission(0, prev[v], cur[v]), ePrev[v], eCur[v]);
                     prev[v] = cur[v], ePrev[v] = eCur[v];

@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "core/base/error.hpp"
 #include "core/volume/preintegration.hpp"
 #include "core/volume/volume_ray.hpp"
@@ -338,6 +340,8 @@ TEST(PreintTable, BuildIsDeterministicAndFinite) {
     const std::vector<double> lengths{0.5, 1.0, 2.0, 4.0};
     const auto start = std::chrono::steady_clock::now();
     const PreintegrationTable a(tf, lengths, 256);
+    a.buildAll();
+    EXPECT_EQ(a.entriesBuilt(), 4 * 256 * 256);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("[ preint   ] build 256x256 x 4 lengths: %.3f s\n", seconds);
     RecordProperty("build_seconds", std::to_string(seconds));
@@ -349,4 +353,51 @@ TEST(PreintTable, BuildIsDeterministicAndFinite) {
                 ASSERT_EQ(channels(a.lookup(li, sf, sb)), channels(b.lookup(li, sf, sb)));
                 ASSERT_TRUE(finiteSample(a.lookup(li, sf, sb)));
             }
+}
+
+// A lookup integrates only the blocks holding its four entries.
+TEST(PreintTable, LookupsBuildOnlyTheBlocksTheyRead) {
+    const PreintegrationTable t(smoothTf(), {1.0, 2.0}, 256);
+    EXPECT_EQ(t.entriesBuilt(), 0);
+    const float inside = 76.5f / 255;  // entries 76 and 77: one block per axis
+    t.lookup(0, inside, inside);
+    EXPECT_EQ(t.entriesBuilt(), kPreintBlock * kPreintBlock);
+    t.lookup(0, inside, inside);  // built already
+    EXPECT_EQ(t.entriesBuilt(), kPreintBlock * kPreintBlock);
+    const float edge = 127.5f / 255;  // entries 127 and 128: two blocks per axis
+    t.lookup(1, edge, edge);
+    EXPECT_EQ(t.entriesBuilt(), 5 * kPreintBlock * kPreintBlock);
+    const PreintegrationTable odd(smoothTf(), {1.0}, 21);  // the last blocks are partial: 16 + 5 per axis
+    odd.buildAll();
+    EXPECT_EQ(odd.entriesBuilt(), 21 * 21);
+}
+
+// Built as needed from many threads at once, or whole: the same entries,
+// bit for bit, equal to the exact integrals at the grid points; the table
+// keeps its own copy of a transfer function its caller let go.
+TEST(PreintTable, EntriesBuiltAsNeededInParallelEqualTheWholeTable) {
+    const std::vector<double> lengths{0.5, 3.0};
+    const PreintegrationTable lazy(peakedTf(), lengths, 64);  // a temporary transfer function
+    const PreintegrationTable whole(peakedTf(), lengths, 64);
+    whole.buildAll();
+    std::vector<std::array<float, 3>> pairs(20000);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (auto& p : pairs) p = {float(rng() % 2), u(rng), u(rng)};
+    std::vector<PreintSample> got(pairs.size());
+    tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t k) {
+        got[k] = lazy.lookup(int(pairs[k][0]), pairs[k][1], pairs[k][2]);
+    });
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const PreintSample w = whole.lookupComplete(int(pairs[k][0]), pairs[k][1], pairs[k][2]);
+        ASSERT_EQ(channels(got[k]), channels(w)) << k;
+    }
+    const TransferFunction tf = peakedTf();
+    for (int i = 0; i < 64; i += 9)
+        for (int j = 0; j < 64; j += 7) {
+            const PreintSample exact = PreintegrationTable::integrateSegment(tf, i / 63.0, j / 63.0, 3.0);
+            const PreintSample entry = lazy.lookup(1, float(i / 63.0), float(j / 63.0));
+            EXPECT_NEAR(entry.a, exact.a, 1e-6) << i << " " << j;
+            EXPECT_NEAR(entry.r, exact.r, 1e-6) << i << " " << j;
+        }
 }
