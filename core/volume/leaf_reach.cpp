@@ -17,7 +17,7 @@ const std::uint8_t* LeafDistances::of(const openvdb::MaskTree& mask, const openv
     std::fill(std::begin(out_), std::end(out_), std::uint8_t(K_ + 1));
     std::fill(std::begin(done_), std::end(done_), 0);
     int left = 512 - record(0);
-    for (int k = 1; k <= K_ && left > 0; ++k) grow(), left -= record(k);
+    for (int k = 1; k <= K_ && left > 0; ++k) grow(k), left -= record(k);
     return left == 512 ? nullptr : out_;
 }
 
@@ -50,16 +50,22 @@ bool LeafDistances::load(const openvdb::MaskTree& mask, const openvdb::Coord& lo
     return any;
 }
 
-// One voxel more in every direction: along z in each word, then y, then x.
-void LeafDistances::grow() {
-    for (std::uint64_t& r : rows_) r = (r | r << 1 | r >> 1) & inBlock_;
-    for (int x = 0; x < B_; ++x)
-        for (int y = 0; y < B_; ++y)
-            grown_[std::size_t(x) * B_ + y] = row(x, y) | (y > 0 ? row(x, y - 1) : 0) | (y + 1 < B_ ? row(x, y + 1) : 0);
-    for (int x = 0; x < B_; ++x)
-        for (int y = 0; y < B_; ++y)
-            row(x, y) = grown_[std::size_t(x) * B_ + y] | (x > 0 ? grown_[std::size_t(x - 1) * B_ + y] : 0) |
-                        (x + 1 < B_ ? grown_[std::size_t(x + 1) * B_ + y] : 0);
+// Growth step k: one voxel more in every direction, along z in each word,
+// then y, then x. Only what the remaining K - k steps can carry into the
+// leaf is kept up to date: step k writes rows k .. B - k - 1 in x and y,
+// reading the ring around them that step k - 1 wrote.
+void LeafDistances::grow(int k) {
+    const int lo = k - 1, hi = B_ - k + 1;  // the rows step k - 1 left current
+    for (int x = lo; x < hi; ++x)
+        for (int y = lo; y < hi; ++y) {
+            std::uint64_t& r = row(x, y);
+            r = (r | r << 1 | r >> 1) & inBlock_;
+        }
+    for (int x = lo; x < hi; ++x)
+        for (int y = lo + 1; y < hi - 1; ++y) grown_[std::size_t(x) * B_ + y] = row(x, y) | row(x, y - 1) | row(x, y + 1);
+    for (int x = lo + 1; x < hi - 1; ++x)
+        for (int y = lo + 1; y < hi - 1; ++y)
+            row(x, y) = grown_[std::size_t(x) * B_ + y] | grown_[std::size_t(x - 1) * B_ + y] | grown_[std::size_t(x + 1) * B_ + y];
 }
 
 // Gives distance k to the leaf's voxels first set now; returns how many.

@@ -32,7 +32,7 @@ public:
 private:
     std::uint64_t& row(int x, int y) { return rows_[std::size_t(x) * B_ + y]; }
     bool load(const openvdb::MaskTree& mask, const openvdb::Coord& lo);
-    void grow();
+    void grow(int k);
     int record(int k);
 
     int K_, B_;
