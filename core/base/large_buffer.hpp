@@ -10,6 +10,10 @@
 // LargeBuffer<T> value-initialises like std::vector; FreshBuffer<T> leaves
 // trivial elements uninitialised, for buffers a parallel loop fills whole
 // (the first touch then happens on every thread at once).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <new>
@@ -82,6 +86,36 @@ FreshBuffer<T> zeroedBuffer(std::size_t n) {
     FreshBuffer<T> buffer(n);
     if (!(kLargeBuffersArriveZeroed && n * sizeof(T) >= kLargeBufferBytes)) std::memset(buffer.data(), 0, n * sizeof(T));
     return buffer;
+}
+
+// Loops over [0, n) in chunks on every thread, so that a fresh buffer's
+// pages are first touched by all of them, not by one.
+template <class Fn>
+void forChunksInParallel(std::size_t n, const Fn& fn) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t(1) << 14),
+                      [&](const tbb::blocked_range<std::size_t>& r) { fn(r.begin(), r.end()); });
+}
+
+// Sets [begin, begin + n) to `value`, in parallel.
+template <class T>
+void fillInParallel(T* begin, std::size_t n, T value) {
+    forChunksInParallel(n, [&](std::size_t i0, std::size_t i1) { std::fill(begin + i0, begin + i1, value); });
+}
+
+// n copies of `value`, written in parallel.
+template <class T>
+FreshBuffer<T> filledBuffer(std::size_t n, T value) {
+    FreshBuffer<T> buffer(n);
+    fillInParallel(buffer.data(), n, value);
+    return buffer;
+}
+
+// A copy of `from`, written in parallel.
+template <class T>
+FreshBuffer<T> copiedBuffer(const FreshBuffer<T>& from) {
+    FreshBuffer<T> to(from.size());
+    forChunksInParallel(from.size(), [&](std::size_t i0, std::size_t i1) { std::copy(from.data() + i0, from.data() + i1, to.data() + i0); });
+    return to;
 }
 
 }  // namespace weft

@@ -330,14 +330,20 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector
                     "], got " + std::to_string(resolution_));
     integrator_ = std::make_unique<Integrator>(tf);
     blocksPerAxis_ = std::size_t((resolution_ + kPreintBlock - 1) / kPreintBlock);
-    const std::size_t blocks = lengths_.size() * blocksPerAxis_ * blocksPerAxis_;
-    blockState_ = std::make_unique<std::atomic<std::uint8_t>[]>(blocks);
-    for (std::size_t b = 0; b < blocks; ++b) blockState_[b].store(kEmpty, std::memory_order_relaxed);
+    blockState_ = std::make_unique<std::atomic<std::uint8_t>[]>(blockCount());
+    for (std::size_t b = 0; b < blockCount(); ++b) blockState_[b].store(kEmpty, std::memory_order_relaxed);
     table_.resize(lengths_.size() * size_t(resolution_) * size_t(resolution_));
     if (withEmission) emission_.resize(table_.size());
 }
 
 PreintegrationTable::~PreintegrationTable() = default;
+
+PreintegrationTable::BlockRange PreintegrationTable::rangeOf(std::size_t block) const {
+    const std::size_t perLength = blocksPerAxis_ * blocksPerAxis_;
+    const int front0 = int(block % perLength / blocksPerAxis_) * kPreintBlock, back0 = int(block % blocksPerAxis_) * kPreintBlock;
+    return {int(block / perLength), front0, std::min(resolution_, front0 + kPreintBlock), back0,
+            std::min(resolution_, back0 + kPreintBlock)};
+}
 
 // One block's entries; the first thread to need it builds it, others wait.
 void PreintegrationTable::buildBlock(std::size_t block) const {
@@ -347,15 +353,12 @@ void PreintegrationTable::buildBlock(std::size_t block) const {
         for (std::uint8_t now = expected; now != kBuilt; now = state.load(std::memory_order_acquire)) state.wait(now, std::memory_order_acquire);
         return;
     }
-    const std::size_t perLength = blocksPerAxis_ * blocksPerAxis_;
-    const int li = int(block / perLength);
-    const int front0 = int(block % perLength / blocksPerAxis_) * kPreintBlock, back0 = int(block % blocksPerAxis_) * kPreintBlock;
-    const int front1 = std::min(resolution_, front0 + kPreintBlock), back1 = std::min(resolution_, back0 + kPreintBlock);
-    const double toS = 1.0 / (resolution_ - 1), length = lengths_[std::size_t(li)];
+    const BlockRange r = rangeOf(block);
+    const double toS = 1.0 / (resolution_ - 1), length = lengths_[std::size_t(r.length)];
     const SegmentIntegrator& in = integrator_->segment;
-    for (int front = front0; front < front1; ++front)
-        for (int back = back0; back < back1; ++back) {
-            const std::size_t at = (std::size_t(li) * resolution_ + std::size_t(front)) * resolution_ + std::size_t(back);
+    for (int front = r.front0; front < r.front1; ++front)
+        for (int back = r.back0; back < r.back1; ++back) {
+            const std::size_t at = (std::size_t(r.length) * resolution_ + std::size_t(front)) * resolution_ + std::size_t(back);
             PreintSample e = in.integrate(front * toS, back * toS, length);
             if (precision_ == PreintPrecision::Bits8) e = {quantize8(e.r), quantize8(e.g), quantize8(e.b), quantize8(e.a)};
             table_[at] = e;
@@ -370,8 +373,7 @@ void PreintegrationTable::buildBlock(std::size_t block) const {
 }
 
 void PreintegrationTable::buildAll() const {
-    const std::size_t blocks = lengths_.size() * blocksPerAxis_ * blocksPerAxis_;
-    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    tbb::parallel_for(std::size_t(0), blockCount(), [&](std::size_t b) {
         if (blockState_[b].load(std::memory_order_acquire) != kBuilt) buildBlock(b);
     });
     complete_.store(true, std::memory_order_release);
@@ -379,12 +381,10 @@ void PreintegrationTable::buildAll() const {
 
 std::int64_t PreintegrationTable::entriesBuilt() const {
     std::int64_t n = 0;
-    const std::size_t perLength = blocksPerAxis_ * blocksPerAxis_;
-    for (std::size_t b = 0; b < lengths_.size() * perLength; ++b) {
+    for (std::size_t b = 0; b < blockCount(); ++b) {
         if (blockState_[b].load(std::memory_order_acquire) != kBuilt) continue;
-        const int rows = std::min(kPreintBlock, resolution_ - int(b % perLength / blocksPerAxis_) * kPreintBlock);
-        const int columns = std::min(kPreintBlock, resolution_ - int(b % blocksPerAxis_) * kPreintBlock);
-        n += std::int64_t(rows) * columns;
+        const BlockRange r = rangeOf(b);
+        n += std::int64_t(r.front1 - r.front0) * (r.back1 - r.back0);
     }
     return n;
 }
@@ -418,22 +418,23 @@ Bilinear bilinear(int lengthIndex, int lengthCount, int resolution, float sFront
     return {i, j, base, base + 1, base + resolution, base + resolution + 1, x - float(i), y - float(j)};
 }
 
+PreintSample mixed(const FreshBuffer<PreintSample>& table, const Bilinear& b) {
+    const PreintSample &e00 = table[b.i00], &e01 = table[b.i01], &e10 = table[b.i10], &e11 = table[b.i11];
+    return {b.mix(e00.r, e01.r, e10.r, e11.r), b.mix(e00.g, e01.g, e10.g, e11.g), b.mix(e00.b, e01.b, e10.b, e11.b),
+            b.mix(e00.a, e01.a, e10.a, e11.a)};
+}
+
 }  // namespace
 
 PreintSample PreintegrationTable::lookup(int lengthIndex, float sFront, float sBack) const {
     const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
     needCell(lengthIndex, b.front, b.back);
-    const PreintSample &e00 = table_[b.i00], &e01 = table_[b.i01], &e10 = table_[b.i10], &e11 = table_[b.i11];
-    return {b.mix(e00.r, e01.r, e10.r, e11.r), b.mix(e00.g, e01.g, e10.g, e11.g), b.mix(e00.b, e01.b, e10.b, e11.b),
-            b.mix(e00.a, e01.a, e10.a, e11.a)};
+    return mixed(table_, b);
 }
 
 PreintSample PreintegrationTable::lookupComplete(int lengthIndex, float sFront, float sBack) const {
     if (!complete_.load(std::memory_order_relaxed)) return lookup(lengthIndex, sFront, sBack);  // not built whole after all
-    const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
-    const PreintSample &e00 = table_[b.i00], &e01 = table_[b.i01], &e10 = table_[b.i10], &e11 = table_[b.i11];
-    return {b.mix(e00.r, e01.r, e10.r, e11.r), b.mix(e00.g, e01.g, e10.g, e11.g), b.mix(e00.b, e01.b, e10.b, e11.b),
-            b.mix(e00.a, e01.a, e10.a, e11.a)};
+    return mixed(table_, bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack));
 }
 
 EmissionWeights PreintegrationTable::lookupEmission(int lengthIndex, float sFront, float sBack) const {

@@ -127,6 +127,11 @@ private:
                std::size_t(back / kPreintBlock);
     }
     void buildBlock(std::size_t block) const;
+    std::size_t blockCount() const { return lengths_.size() * blocksPerAxis_ * blocksPerAxis_; }
+    struct BlockRange {
+        int length, front0, front1, back0, back1;  // entries [front0, front1) x [back0, back1) of one length
+    };
+    BlockRange rangeOf(std::size_t block) const;
 
     static constexpr std::uint8_t kEmpty = 0, kBuilding = 1, kBuilt = 2;
     std::vector<double> lengths_;

@@ -138,15 +138,6 @@ FreshBuffer<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
     return sums;
 }
 
-// A copy whose pages every thread touches first, not one.
-FreshBuffer<float> copyInParallel(const FreshBuffer<float>& from) {
-    FreshBuffer<float> to(from.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), std::size_t(1) << 14), [&](const tbb::blocked_range<std::size_t>& r) {
-        std::copy(from.begin() + std::ptrdiff_t(r.begin()), from.begin() + std::ptrdiff_t(r.end()), to.begin() + std::ptrdiff_t(r.begin()));
-    });
-    return to;
-}
-
 class AdaptiveIndirect final : public Technique {
 public:
     AdaptiveIndirect(const Scene& scene, const ParamSet& p) : p_(readParams(p)) {
@@ -172,7 +163,7 @@ public:
             eyeT = cameraTransmittance(scene, g, volumes, ctx.counters);
         }
         { ScopedTimer t(ctx.timings, "IS.indirect"); raw = sampleIndirect(g, est, counts, p_.batch, s.seed, volumes, ctx.counters); }
-        FreshBuffer<float> filtered = copyInParallel(raw);
+        FreshBuffer<float> filtered = copiedBuffer(raw);
         if (p_.mode != Mode::Uniform) {
             ScopedTimer t(ctx.timings, "AT.atrous");
             atrousFilter(filtered.data(), filtered.size(), g.width, g.height, guides, p_.atrous, countWeights(counts));

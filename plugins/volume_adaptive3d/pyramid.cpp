@@ -1,6 +1,5 @@
 #include "plugins/volume_adaptive3d/pyramid.hpp"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -14,22 +13,6 @@ namespace {
 const Counter kOracleSamples{"oracle.samples", "oracle lookups (the paper's SAMPLE ORACLE)"};
 const Counter kSynthesisOps{"synthesis.ops", "per-pixel syntheses of data and oracle (the paper's SYNTHESIZE)"};
 const IndexedCounter kVolumeSamplesLevel{"volume.samples.level", "volume lookups at pyramid level N"};
-
-// Sets [begin, begin + n) to `value` in parallel: a fresh buffer's pages
-// are then first touched on every thread, not all on one.
-template <class T>
-void fillInParallel(T* begin, std::size_t n, T value) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t(1) << 14), [&](const tbb::blocked_range<std::size_t>& r) {
-        std::fill(begin + r.begin(), begin + r.end(), value);
-    });
-}
-
-template <class T>
-FreshBuffer<T> filledBuffer(std::size_t n, T value) {
-    FreshBuffer<T> b(n);
-    fillInParallel(b.data(), n, value);
-    return b;
-}
 
 // Each volume's background scalar repeated for every pixel, volume-major.
 FreshBuffer<float> backgrounds(const std::vector<SliceVolume>& volumes, std::size_t pixels) {
