@@ -58,7 +58,9 @@ TEST(EmissionOracle, AChangingGlowIsAFeatureWhereTheDensityIsFlat) {
         const OracleField with = oracle.build({glowing, 1.0, 3, 0.01});
         ASSERT_TRUE(with.distance) << name;
         EXPECT_EQ(distanceAt(with, step), 1.0f) << name;  // the step is sampled densely
-        if (without.distance) EXPECT_GE(distanceAt(without, step), distanceAt(with, step)) << name;
+        if (without.distance) {
+            EXPECT_GE(distanceAt(without, step), distanceAt(with, step)) << name;
+        }
     }
     // gradient_alpha: the flat dark interior stays coarse, glow or not.
     const OracleField with = oracles().get("gradient_alpha").build({glowing, 1.0, 3, 0.01});

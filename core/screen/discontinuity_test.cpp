@@ -87,7 +87,9 @@ TEST(Discontinuity, BlurIgnoresWhatItsScratchHeldAndLeavesOtherChannels) {
     discontinuityBlur(given.data(), scratch.data(), w, h, stride, 2, disc, 4);
     for (std::size_t i = 0; i < data.size(); ++i) {
         EXPECT_EQ(given[i], own[i]) << i;
-        if (i % stride == 2) EXPECT_EQ(given[i], data[i]) << "channel 3 is not blurred, " << i;
+        if (i % stride == 2) {
+            EXPECT_EQ(given[i], data[i]) << "channel 3 is not blurred, " << i;
+        }
     }
     EXPECT_NE(own, data);
 }
