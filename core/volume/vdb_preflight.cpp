@@ -1,9 +1,17 @@
 #include "core/volume/vdb_preflight.hpp"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <mutex>
 #include <optional>
-#include <sstream>
+#include <set>
+#include <tuple>
 #include <vector>
 
 #include <openvdb/Metadata.h>
@@ -169,9 +177,9 @@ void walkStreamedGrids(Walker& w, const FileFormat& file, std::int32_t grids) {
     }
 }
 
-void walk(std::istream& in, std::uint64_t size, const std::string& name) {
+void walk(const char* data, std::uint64_t size, const std::string& name) {
     initVdb();  // the registered metadata types
-    Walker w(in, size, name);
+    Walker w(data, size, name);
     if (size < 8 || w.value<std::int64_t>("magic number") != kMagic) return;  // not a VDB: OpenVDB says so
     const std::uint32_t version = w.value<std::uint32_t>("file version");
     // Outside these versions OpenVDB reads lengths this walk cannot check
@@ -194,19 +202,56 @@ void walk(std::istream& in, std::uint64_t size, const std::string& name) {
     else walkStreamedGrids(w, file, grids);
 }
 
+// A file as it stands on disk: the same path with another inode, size or
+// modification time is walked again.
+using FileIdentity = std::tuple<std::string, dev_t, ino_t, off_t, time_t, long>;
+
+// Files this process has walked and found sound: the density, its role
+// grids and the grid-name lookup each open the same file, and one walk
+// checks every grid in it.
+bool walkedBefore(const FileIdentity& file, bool remember) {
+    static std::mutex mutex;
+    static std::set<FileIdentity> walked;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (remember) walked.insert(file);
+    return walked.count(file) > 0;
+}
+
+// The whole file in memory for the walk: mapped where the system can map
+// it (only the pages the walk reads are loaded), read otherwise.
+void walkFile(int fd, std::uint64_t size, const std::string& path) {
+    if (size == 0) return walk(nullptr, 0, path);
+    void* mapped = mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (mapped == MAP_FAILED) {
+        std::ifstream in(path, std::ios::binary);
+        const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        return walk(bytes.data(), bytes.size(), path);
+    }
+    struct Unmap {
+        void* at;
+        std::uint64_t size;
+        ~Unmap() { munmap(at, size); }
+    } unmap{mapped, size};
+    walk(static_cast<const char*>(mapped), size, path);
+}
+
 }  // namespace
 
 void preflightVdb(const std::string& path) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) return;  // unreadable: the caller's open says so
-    const std::streamoff size = in.tellg();
-    in.seekg(0);
-    walk(in, size > 0 ? std::uint64_t(size) : 0, path);
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return;  // unreadable: the caller's open says so
+    struct Close {
+        int fd;
+        ~Close() { ::close(fd); }
+    } close{fd};
+    struct stat st {};
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return;  // the caller's checks name it
+    const FileIdentity file{path, st.st_dev, st.st_ino, st.st_size, st.st_mtim.tv_sec, st.st_mtim.tv_nsec};
+    if (walkedBefore(file, false)) return;
+    walkFile(fd, std::uint64_t(st.st_size), path);
+    walkedBefore(file, true);
 }
 
-void preflightVdbBytes(const std::string& bytes, const std::string& name) {
-    std::istringstream in(bytes);
-    walk(in, bytes.size(), name);
-}
+void preflightVdbBytes(const std::string& bytes, const std::string& name) { walk(bytes.data(), bytes.size(), name); }
 
 }  // namespace weft

@@ -258,6 +258,33 @@ TEST_F(VdbPreflight, UncompressedZipChunkOfAnotherSizeIsRefused) {
     EXPECT_NE(v.find("uncompressed zip chunk of 4096 bytes where the node's values take 2048 at byte"), std::string::npos) << v;
 }
 
+// Leaves are read in parallel from the mapped file after the walk: a chunk
+// whose compressed bytes do not decode (the walk checks sizes, not
+// contents) is a clean error, not a crash, and the next read works.
+TEST_F(VdbPreflight, AChunkThatDoesNotDecodeIsACleanError) {
+    initVdb();
+    auto ramp = openvdb::FloatGrid::create(0.0f);  // repeating values: zip compresses every leaf
+    ramp->setName("density");
+    for (int i = 0; i < 4096; ++i) ramp->tree().setValue(openvdb::Coord(i & 15, (i >> 4) & 15, i >> 8), float(i % 7));
+    std::string b = writeWith(dir / "zip.vdb", {ramp}, openvdb::io::COMPRESS_ZIP, false);
+    std::size_t stream = 0;  // the last zlib stream (a deflate header of any level)
+    for (const char* header : {"\x78\x01", "\x78\x5e", "\x78\x9c", "\x78\xda"})
+        if (const std::size_t at = b.rfind(header); at != std::string::npos) stream = std::max(stream, at);
+    ASSERT_GT(stream, 0u);
+    ASSERT_LT(stream + 40, b.size());
+    for (std::size_t i = stream + 2; i < stream + 40; ++i) b[i] = char(0xff);
+    EXPECT_EQ(verdict(b), "");  // the sizes still hold
+    const auto path = dir / "bad.vdb";
+    std::ofstream(path, std::ios::binary) << b;
+    try {
+        readFloatGrid(path.string(), "density");
+        ADD_FAILURE() << "a chunk that does not decode was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot be read: the file is corrupt"), std::string::npos) << e.what();
+    }
+    EXPECT_GT(readFloatGrid((dir / "zip.vdb").string(), "density")->activeVoxelCount(), 0);
+}
+
 TEST_F(VdbPreflight, BloscHeaderOfAnotherSizeIsRefused) {
     std::string b = writeWith(dir / "blosc.vdb", {leafOfNoise()}, openvdb::io::COMPRESS_BLOSC, false);
     // The leaf's chunk: its size, then blosc's header stating 2048 bytes decompressed and the size again.

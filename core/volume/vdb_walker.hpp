@@ -1,9 +1,10 @@
 #pragma once
-// A bounds-checked reader over a .vdb file for the preflight walks
+// A bounds-checked reader over a .vdb file's bytes for the preflight walks
 // (vdb_preflight.cpp, vdb_float_tree.cpp): every length is checked against
-// the bytes left before it is read or skipped.
+// the bytes left before it is read or skipped. The bytes lie in memory (the
+// file mapped), so skipping a chunk costs no system call.
 #include <cstdint>
-#include <istream>
+#include <cstring>
 #include <string>
 
 #include "core/base/error.hpp"
@@ -14,7 +15,7 @@ constexpr std::uint32_t kMaxName = 1 << 20;  // names and type names: a megabyte
 
 class Walker {
 public:
-    Walker(std::istream& in, std::uint64_t size, std::string name) : in_(in), size_(size), name_(std::move(name)) {}
+    Walker(const char* data, std::uint64_t size, std::string name) : data_(data), size_(size), name_(std::move(name)) {}
 
     [[noreturn]] void corrupt(const std::string& what) const {
         throw Error("volume '" + name_ + "': corrupt file (" + what + " at byte " + std::to_string(pos_) + ")");
@@ -26,8 +27,7 @@ public:
 
     void bytes(void* out, std::uint64_t n, const char* what) {
         if (n > left()) corrupt(std::string(what) + " runs past the end of the file");
-        in_.read(static_cast<char*>(out), std::streamsize(n));
-        if (!in_) corrupt(std::string(what) + " cannot be read");
+        if (n > 0) std::memcpy(out, data_ + pos_, n);
         pos_ += n;
     }
     template <typename T> T value(const char* what) {
@@ -37,13 +37,10 @@ public:
     }
     void skip(std::uint64_t n, const char* what) {
         if (n > left()) corrupt(std::string(what) + " of " + std::to_string(n) + " bytes runs past the end of the file");
-        in_.seekg(std::streamoff(n), std::ios::cur);
         pos_ += n;
     }
     void seek(std::int64_t at, const char* what) {
         if (at < 0 || std::uint64_t(at) > size_) corrupt(std::string(what) + " " + std::to_string(at) + " lies outside the file");
-        in_.clear();
-        in_.seekg(at);
         pos_ = std::uint64_t(at);
     }
     // A blosc buffer of `stated` bytes that must decompress to `expected`:
@@ -79,7 +76,7 @@ public:
     }
 
 private:
-    std::istream& in_;
+    const char* data_;
     std::uint64_t size_, pos_ = 0;
     std::string name_;
 };
