@@ -15,6 +15,35 @@ namespace {
 
 int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
+// The cache voxels (`factor` density voxels wide) holding the active
+// voxels of one density leaf, each marked once. The leaf's mask is read a
+// row along z (one byte of a 64-bit word) at a time.
+void markLeafCoarse(const openvdb::FloatTree::LeafNodeType& leaf, int factor,
+                    openvdb::tree::ValueAccessor<openvdb::MaskTree>& coarse) {
+    constexpr int kMaxSpan = 8 / 2 + 2;  // cache voxels a leaf spans per axis, factor >= 2
+    const openvdb::Coord o = leaf.origin();
+    const openvdb::Coord lo(floorDiv(o.x(), factor), floorDiv(o.y(), factor), floorDiv(o.z(), factor));
+    int cell[3][8];  // the cache voxel of each local coordinate, per axis, from lo
+    for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 8; ++i) cell[a][i] = floorDiv(o[a] + i, factor) - lo[a];
+    std::uint8_t zBits[kMaxSpan] = {};  // the local z's of each cache voxel along z
+    for (int z = 0; z < 8; ++z) zBits[cell[2][z]] |= std::uint8_t(1u << z);
+    const int zCells = cell[2][7] + 1;
+    bool seen[kMaxSpan][kMaxSpan][kMaxSpan] = {};
+    for (int x = 0; x < 8; ++x) {
+        const std::uint64_t word = leaf.getValueMask().getWord<std::uint64_t>(openvdb::Index(x));
+        for (int y = 0; word && y < 8; ++y) {
+            const std::uint8_t row = std::uint8_t(word >> (8 * y));
+            for (int k = 0; row && k < zCells; ++k)
+                if (row & zBits[k]) seen[cell[0][x]][cell[1][y]][k] = true;
+        }
+    }
+    for (int x = 0; x < kMaxSpan; ++x)
+        for (int y = 0; y < kMaxSpan; ++y)
+            for (int z = 0; z < kMaxSpan; ++z)
+                if (seen[x][y][z]) coarse.setValueOn(lo.offsetBy(x, y, z));
+}
+
 // Every cache voxel a trilinear lookup of a non-empty point can reach;
 // the cache's voxels are `factor` density voxels wide, centred on a density
 // voxel: the density's voxels at the cache's scale, grown by one voxel.
@@ -28,8 +57,11 @@ openvdb::FloatGrid::Ptr cacheTopology(const openvdb::FloatGrid& density, int fac
         coarse.topologyUnion(density.tree());
     } else {
         openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(coarse);
-        for (auto it = density.tree().cbeginValueOn(); it; ++it) {
-            const openvdb::CoordBBox box = it.getBoundingBox();
+        for (auto leaf = density.tree().cbeginLeaf(); leaf; ++leaf) markLeafCoarse(*leaf, factor, acc);
+        auto tile = density.tree().cbeginValueOn();
+        tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only: the leaves' voxels are marked above
+        for (; tile; ++tile) {
+            const openvdb::CoordBBox box = tile.getBoundingBox();
             for (int x = floorDiv(box.min().x(), factor); x <= floorDiv(box.max().x(), factor); ++x)
                 for (int y = floorDiv(box.min().y(), factor); y <= floorDiv(box.max().y(), factor); ++y)
                     for (int z = floorDiv(box.min().z(), factor); z <= floorDiv(box.max().z(), factor); ++z)
