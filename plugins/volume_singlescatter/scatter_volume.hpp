@@ -29,8 +29,9 @@ struct ScatterVolume {
     bool uniform = true;                          // index units are voxel lengths exactly
     const openvdb::math::MapBase* map = nullptr;  // the grid's index-to-world map (no shared_ptr copies per ray)
 
-    // The world ray in index space, as OpenVDB maps it (t counts voxels).
-    VdbRay indexRay(const VdbRay& world) const { return world.worldToIndex(*volume->grid); }
+    // The world ray in index space, as OpenVDB's worldToIndex maps it (t
+    // counts voxels), through the map itself: no shared_ptr copy per ray.
+    VdbRay indexRay(const VdbRay& world) const { return world.applyInverseMap(*map); }
     // Voxel lengths per index unit along a unit index-space direction (1 on uniform grids).
     double voxelLengthsPerIndexUnit(const Vec3d& indexDir) const {
         if (uniform) return 1.0;
