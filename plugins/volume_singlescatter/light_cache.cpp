@@ -15,13 +15,26 @@ namespace {
 
 int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-// The cache voxels (`factor` density voxels wide) holding the active
+// Where the cache's voxel 0 lies in the density's index space: a multiple
+// of the cache's leaf width below the active voxels, so cache coordinates are
+// positive and density leaves map onto cache voxels alike. A volume around
+// the index origin would otherwise spread the cache's trees over the eight
+// octants, each with a top node of 256 KiB to clear.
+openvdb::Coord cacheOrigin(const openvdb::CoordBBox& active, int factor) {
+    if (active.empty()) return openvdb::Coord(0);
+    const int leafWidth = 8 * factor;
+    return openvdb::Coord((floorDiv(active.min().x(), leafWidth) - 1) * leafWidth,
+                          (floorDiv(active.min().y(), leafWidth) - 1) * leafWidth,
+                          (floorDiv(active.min().z(), leafWidth) - 1) * leafWidth);
+}
+
+// The cache voxels (`factor` >= 2 density voxels wide) holding the active
 // voxels of one density leaf, each marked once. The leaf's mask is read a
 // row along z (one byte of a 64-bit word) at a time.
-void markLeafCoarse(const openvdb::FloatTree::LeafNodeType& leaf, int factor,
+void markLeafCoarse(const openvdb::FloatTree::LeafNodeType& leaf, const openvdb::Coord& origin, int factor,
                     openvdb::tree::ValueAccessor<openvdb::MaskTree>& coarse) {
-    constexpr int kMaxSpan = 8 / 2 + 2;  // cache voxels a leaf spans per axis, factor >= 2
-    const openvdb::Coord o = leaf.origin();
+    constexpr int kMaxSpan = 8 / 2 + 2;  // cache voxels a leaf spans per axis
+    const openvdb::Coord o = leaf.origin() - origin;
     const openvdb::Coord lo(floorDiv(o.x(), factor), floorDiv(o.y(), factor), floorDiv(o.z(), factor));
     int cell[3][8];  // the cache voxel of each local coordinate, per axis, from lo
     for (int a = 0; a < 3; ++a)
@@ -44,30 +57,38 @@ void markLeafCoarse(const openvdb::FloatTree::LeafNodeType& leaf, int factor,
                 if (seen[x][y][z]) coarse.setValueOn(lo.offsetBy(x, y, z));
 }
 
+// The density's active voxels and tiles at the cache's scale.
+openvdb::MaskTree coarseVoxels(const openvdb::FloatTree& density, const openvdb::Coord& origin, int factor) {
+    openvdb::MaskTree coarse(false);
+    openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(coarse);
+    for (auto leaf = density.cbeginLeaf(); leaf; ++leaf) {
+        if (factor > 1) markLeafCoarse(*leaf, origin, factor, acc);
+        else if (!leaf->isEmpty()) acc.touchLeaf(leaf->origin() - origin)->setValueMask(leaf->getValueMask());
+    }
+    auto tile = density.cbeginValueOn();
+    tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only: the leaves' voxels are marked above
+    for (; tile; ++tile) {
+        const openvdb::CoordBBox box = tile.getBoundingBox();
+        const openvdb::Coord lo = box.min() - origin, hi = box.max() - origin;
+        coarse.fill(openvdb::CoordBBox(openvdb::Coord(floorDiv(lo.x(), factor), floorDiv(lo.y(), factor), floorDiv(lo.z(), factor)),
+                                       openvdb::Coord(floorDiv(hi.x(), factor), floorDiv(hi.y(), factor), floorDiv(hi.z(), factor))),
+                    true, true);
+    }
+    return coarse;
+}
+
 // Every cache voxel a trilinear lookup of a non-empty point can reach;
 // the cache's voxels are `factor` density voxels wide, centred on a density
-// voxel: the density's voxels at the cache's scale, grown by one voxel.
-openvdb::FloatGrid::Ptr cacheTopology(const openvdb::FloatGrid& density, int factor) {
+// voxel (cache voxel c on density voxel origin + factor c): the density's
+// voxels at the cache's scale, grown by one voxel.
+openvdb::FloatGrid::Ptr cacheTopology(const Volume& receiver, int factor) {
+    const openvdb::Coord origin = cacheOrigin(receiver.activeBox, factor);
     openvdb::FloatGrid::Ptr cache = openvdb::FloatGrid::create(0.0f);
-    openvdb::math::Transform::Ptr xf = density.transform().copy();
+    openvdb::math::Transform::Ptr xf = receiver.grid->transform().copy();
+    xf->preTranslate(origin.asVec3d());
     xf->preScale(double(factor));
     cache->setTransform(xf);
-    openvdb::MaskTree coarse(false);
-    if (factor == 1) {
-        coarse.topologyUnion(density.tree());
-    } else {
-        openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(coarse);
-        for (auto leaf = density.tree().cbeginLeaf(); leaf; ++leaf) markLeafCoarse(*leaf, factor, acc);
-        auto tile = density.tree().cbeginValueOn();
-        tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only: the leaves' voxels are marked above
-        for (; tile; ++tile) {
-            const openvdb::CoordBBox box = tile.getBoundingBox();
-            for (int x = floorDiv(box.min().x(), factor); x <= floorDiv(box.max().x(), factor); ++x)
-                for (int y = floorDiv(box.min().y(), factor); y <= floorDiv(box.max().y(), factor); ++y)
-                    for (int z = floorDiv(box.min().z(), factor); z <= floorDiv(box.max().z(), factor); ++z)
-                        acc.setValueOn(openvdb::Coord(x, y, z));
-        }
-    }
+    openvdb::MaskTree coarse = coarseVoxels(receiver.grid->tree(), origin, factor);
     coarse.voxelizeActiveTiles();
     using Leaf = openvdb::FloatTree::LeafNodeType;
     addLeavesNear(cache->tree(), coarse, 1, [](const openvdb::Coord& origin, const std::uint8_t* d) {
@@ -155,7 +176,7 @@ double PathMarcher::entryDistance(const Vec3d& x, const Vec3d& dir) const {
 
 openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const DirectionalOrPointLight& light,
                                         const LightCacheSettings& settings) {
-    openvdb::FloatGrid::Ptr cache = cacheTopology(*receiver.grid, std::max(1, settings.coarsening));
+    openvdb::FloatGrid::Ptr cache = cacheTopology(receiver, std::max(1, settings.coarsening));
     const openvdb::math::Transform& occluderXf = occluder.grid->transform();
     fillCache(*cache, [&] { return std::make_unique<PathMarcher>(occluder, light, settings); },
               [&](PathMarcher& marcher, const Vec3d& p) { return marcher.densityPath(occluderXf.worldToIndex(p)); });
@@ -164,7 +185,7 @@ openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& oc
 
 openvdb::FloatGrid::Ptr buildVisibilityCache(const Volume& receiver, const MeshAccel& accel,
                                              const DirectionalOrPointLight& light, int coarsening) {
-    openvdb::FloatGrid::Ptr cache = cacheTopology(*receiver.grid, std::max(1, coarsening));
+    openvdb::FloatGrid::Ptr cache = cacheTopology(receiver, std::max(1, coarsening));
     fillCache(*cache, [] { return std::make_unique<int>(0); }, [&](int&, const Vec3d& p) {
         Vec3d to = light.toLight;
         double distance = std::numeric_limits<double>::infinity();

@@ -56,10 +56,18 @@ TEST(LightCache, HoldsExactlyTheVoxelsLookupsReachAtEveryCoarsening) {
         const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, light, {1.0, 0.2, 0.005, 0.1, factor});
         const openvdb::MaskTree expected = expectedCacheVoxels(*volume.grid, factor);
         EXPECT_EQ(cache->activeVoxelCount(), expected.activeVoxelCount());
-        std::int64_t missing = 0;
-        for (auto it = expected.cbeginValueOn(); it; ++it) missing += !cache->tree().isValueOn(it.getCoord());
+        std::int64_t missing = 0;  // the cache places its voxels by its own origin: found by position
+        for (auto it = expected.cbeginValueOn(); it; ++it) {
+            const Vec3d world = volume.grid->indexToWorld(it.getCoord().asVec3d() * double(factor));
+            missing += !cache->tree().isValueOn(openvdb::Coord::round(cache->worldToIndex(world)));
+        }
         EXPECT_EQ(missing, 0);
         EXPECT_DOUBLE_EQ(cache->transform().voxelSize()[0], double(factor));
+        // Every cache coordinate is positive: the trees stay in one octant.
+        const openvdb::CoordBBox box = cache->evalActiveVoxelBoundingBox();
+        EXPECT_GE(box.min().x(), 0);
+        EXPECT_GE(box.min().y(), 0);
+        EXPECT_GE(box.min().z(), 0);
     }
 }
 
