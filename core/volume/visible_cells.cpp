@@ -2,10 +2,13 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <bitset>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace weft {
@@ -68,22 +71,40 @@ CellBits visibleCellsOf(const Leaf& leaf, const openvdb::FloatGrid::ConstAccesso
 
 }  // namespace
 
+namespace {
+
+// The output leaf at `origin` (value 1 on its visible cells): the cells of
+// the up to eight grid leaves at origin + 8 {0,1}^3 that fall in it. Leaf
+// D's cells start at D - 1, so its cells 1..8 lie in leaf D and cell 0 in
+// the leaf below it along that axis.
+std::unique_ptr<Leaf> outputLeaf(const openvdb::Coord& origin, const std::unordered_map<openvdb::Coord, std::size_t>& indexOf,
+                                 const std::vector<CellBits>& visible) {
+    std::unique_ptr<Leaf> leaf;
+    for (int a = 0; a < 8; ++a) {
+        const openvdb::Coord step(8 * (a & 1), 8 * ((a >> 1) & 1), 8 * ((a >> 2) & 1));  // 0 or 8 per axis
+        const auto found = indexOf.find(origin + step);
+        if (found == indexOf.end() || visible[found->second].none()) continue;
+        const CellBits& cells = visible[found->second];
+        // Cells of this source inside the output leaf, per axis: [1, 9) or [0, 1).
+        const openvdb::Coord lo(step.x() ? 0 : 1, step.y() ? 0 : 1, step.z() ? 0 : 1);
+        const openvdb::Coord hi(step.x() ? 1 : kCells, step.y() ? 1 : kCells, step.z() ? 1 : kCells);
+        for (int x = lo.x(); x < hi.x(); ++x)
+            for (int y = lo.y(); y < hi.y(); ++y)
+                for (int z = lo.z(); z < hi.z(); ++z) {
+                    if (!cells.test((x * kCells + y) * kCells + z)) continue;
+                    if (!leaf) leaf = std::make_unique<Leaf>(origin, 0.0f, false);
+                    leaf->setValueOn(Leaf::coordToOffset(step + openvdb::Coord(x - 1, y - 1, z - 1)), 1.0f);
+                }
+    }
+    return leaf;
+}
+
+}  // namespace
+
 openvdb::FloatGrid::Ptr visibleCells(const openvdb::FloatGrid& grid, const TransferFunction& tf) {
     if (!tf.transparentOver(grid.background(), grid.background())) return nullptr;
     auto cells = openvdb::FloatGrid::create(0.0f);
     cells->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
-    openvdb::FloatGrid::Accessor out = cells->getAccessor();
-    // Tiles hold one value: a visible one marks its box and, for the cells
-    // that straddle into it from below, one voxel more on the low sides.
-    auto tiles = grid.tree().cbeginValueAll();
-    tiles.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
-    for (; tiles; ++tiles) {
-        const Range r = rangeOf(*tiles);
-        if (tf.transparentOver(r.lo, r.hi)) continue;
-        openvdb::CoordBBox box;
-        tiles.getBoundingBox(box);
-        cells->tree().fill(openvdb::CoordBBox(box.min().offsetBy(-1), box.max()), 1.0f, true);
-    }
     std::vector<const Leaf*> leaves;
     leaves.reserve(grid.tree().leafCount());
     for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
@@ -92,13 +113,34 @@ openvdb::FloatGrid::Ptr visibleCells(const openvdb::FloatGrid& grid, const Trans
         const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
         for (std::size_t i = range.begin(); i != range.end(); ++i) visible[i] = visibleCellsOf(*leaves[i], acc, tf);
     });
+    // The output leaves are made in parallel from the cells of the grid
+    // leaves over them (one tree write per cell was most of the time).
+    std::unordered_map<openvdb::Coord, std::size_t> indexOf;
+    std::vector<openvdb::Coord> origins;
     for (std::size_t i = 0; i < leaves.size(); ++i) {
         if (visible[i].none()) continue;
-        const openvdb::Coord o = leaves[i]->origin().offsetBy(-1);
-        for (int x = 0; x < kCells; ++x)
-            for (int y = 0; y < kCells; ++y)
-                for (int z = 0; z < kCells; ++z)
-                    if (visible[i].test((x * kCells + y) * kCells + z)) out.setValueOn(o.offsetBy(x, y, z), 1.0f);
+        indexOf.emplace(leaves[i]->origin(), i);
+        for (int a = 0; a < 8; ++a) origins.push_back(leaves[i]->origin() - openvdb::Coord(8 * (a & 1), 8 * ((a >> 1) & 1), 8 * ((a >> 2) & 1)));
+    }
+    std::sort(origins.begin(), origins.end());
+    origins.erase(std::unique(origins.begin(), origins.end()), origins.end());
+    std::vector<std::unique_ptr<Leaf>> made(origins.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) made[i] = outputLeaf(origins[i], indexOf, visible);
+    });
+    for (auto& leaf : made)
+        if (leaf) cells->tree().addLeaf(leaf.release());
+    // Tiles hold one value: a visible one marks its box and, for the cells
+    // that straddle into it from below, one voxel more on the low sides.
+    // Filled after the leaves, which it may cover: the union either way.
+    auto tiles = grid.tree().cbeginValueAll();
+    tiles.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+    for (; tiles; ++tiles) {
+        const Range r = rangeOf(*tiles);
+        if (tf.transparentOver(r.lo, r.hi)) continue;
+        openvdb::CoordBBox box;
+        tiles.getBoundingBox(box);
+        cells->tree().fill(openvdb::CoordBBox(box.min().offsetBy(-1), box.max()), 1.0f, true);
     }
     return cells;
 }
