@@ -243,7 +243,13 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     const TechniqueInfo& info = techniques().get(name);
     char stage[160];
     std::snprintf(stage, sizeof stage, "%s at %dx%d", name.c_str(), ctx.settings.width, ctx.settings.height);
-    auto technique = inStage(stage, [&] { return info.create(scene, params); });
+    // A technique may build per-scene structures before its render (the
+    // raymarch's empty-space cells, a dense copy): timed as "setup".
+    std::unique_ptr<Technique> technique;
+    {
+        ScopedTimer timer(ctx.timings, "setup");
+        technique = inStage(stage, [&] { return info.create(scene, params); });
+    }
     for (const Volume& v : scene.volumes)
         if (v.gridsPicked) std::fprintf(stderr, "weft: %s: grids found by their names: %s\n", v.source.c_str(), v.grids.c_str());
     if (const std::string unused = info.scatters ? "" : unusedColorGrids(scene, name); !unused.empty())
