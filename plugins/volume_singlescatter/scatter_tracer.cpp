@@ -199,7 +199,7 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
     double unitLength = std::numeric_limits<double>::max();
     for (std::uint32_t i : crossed(ray.origin, ray.dir, std::numeric_limits<double>::infinity(), row)) {
         const VdbRay iray = volumes_[i].indexRay(wray);
-        if (!row.volumes[i].primary.setIndexRay(iray)) continue;
+        if (!row.volumes[i].primary.setIndexRay(volumes_[i].occupancyRay(iray))) continue;
         row.crossings.push_back({i, iray, 0, 0});
         unitLength = std::min(unitLength, volumes_[i].voxelLength);
     }
@@ -370,7 +370,7 @@ Vec3d ScatterTracer::shadowThrough(std::size_t volume, const Vec3d& p, const Vec
     // vdb_render's shadow rays start at t = Delta, so the first fixed step
     // lands one step away from p; the intersector works in index times.
     const VdbRay iray = v.indexRay(VdbRay(p, toLight, openvdb::math::Delta<double>::value(), distance));
-    if (!look.shadow.setIndexRay(iray)) return T;
+    if (!look.shadow.setIndexRay(v.occupancyRay(iray))) return T;
     look.shadow.hits(row.hits);
     const double k = v.voxelLengthsPerIndexUnit(iray.dir());  // 1 on uniform grids
     auto sigma = [&](double t) {

@@ -7,6 +7,29 @@ namespace weft {
 
 namespace {
 
+int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// The active voxels of `occupancy` (an index-space grid) shifted by whole
+// leaves to lie a leaf above the origin on every axis.
+openvdb::MaskGrid::Ptr shiftedOccupancy(const openvdb::FloatGrid& occupancy, openvdb::Coord& shift) {
+    const openvdb::CoordBBox box = occupancy.evalActiveVoxelBoundingBox();
+    shift = openvdb::Coord(0);
+    if (!box.empty())
+        for (int a = 0; a < 3; ++a) shift[a] = -(floorDiv(box.min()[a], 8) - 1) * 8;
+    auto mask = openvdb::MaskGrid::create(false);
+    mask->setTransform(occupancy.transform().copy());
+    openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(mask->tree());
+    for (auto leaf = occupancy.tree().cbeginLeaf(); leaf; ++leaf)
+        if (!leaf->isEmpty()) acc.touchLeaf(leaf->origin() + shift)->setValueMask(leaf->getValueMask());
+    auto tile = occupancy.tree().cbeginValueOn();
+    tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only
+    for (; tile; ++tile) {
+        const openvdb::CoordBBox b = tile.getBoundingBox();
+        mask->tree().fill(openvdb::CoordBBox(b.min() + shift, b.max() + shift), true, true);
+    }
+    return mask;
+}
+
 void setCoefficients(ScatterVolume& v, const Vec3d& absorb, const Vec3d& scatter) {
     v.sigmaT = absorb + scatter;
     for (int c = 0; c < 3; ++c) v.albedo[c] = v.sigmaT[c] > 0 ? scatter[c] / v.sigmaT[c] : 0.0;
@@ -20,8 +43,10 @@ std::vector<ScatterVolume> scatterVolumes(const Scene& scene, const ScatterParam
         if (vol.empty()) continue;  // OpenVDB's intersector refuses empty grids; they add nothing
         ScatterVolume v;
         v.volume = &vol;
-        v.indexGrid = occupancyIndexGrid(vol);
-        v.intersector = std::make_shared<const VdbIntersector>(*v.indexGrid);
+        openvdb::Coord shift;
+        v.occupancy = shiftedOccupancy(*occupancyIndexGrid(vol), shift);
+        v.shift = shift.asVec3d();
+        v.intersector = std::make_shared<const VdbIntersector>(*v.occupancy);
         v.phase = params.phase, v.g = params.g;
         if (vol.medium.fromScene && !paramsWin) {
             setCoefficients(v, vol.medium.absorb, vol.medium.scatter);

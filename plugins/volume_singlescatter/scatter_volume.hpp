@@ -1,9 +1,14 @@
 #pragma once
 // What volume.singlescatter keeps of each volume for one render: its
 // coefficients (the scene's medium, else the technique's absorb/scatter),
-// an OpenVDB intersector on its index-space copy (the intersector needs
-// uniform voxels; index-space rays work for any affine transform), and the
-// lengths that turn index units into voxel lengths.
+// an OpenVDB intersector on its occupied voxels in index space (the
+// intersector needs uniform voxels; index-space rays work for any affine
+// transform), and the lengths that turn index units into voxel lengths.
+// The intersector's voxels are shifted by whole leaves so that their
+// coordinates are positive: a volume around the index origin would give
+// its tree a top node per octant (256 KiB each to clear, on one thread).
+// Rays enter it through occupancyRay, shifted alike; the times along a ray
+// are the same.
 #include <openvdb/tools/RayIntersector.h>
 
 #include <memory>
@@ -14,12 +19,13 @@
 
 namespace weft {
 
-using VdbIntersector = openvdb::tools::VolumeRayIntersector<openvdb::FloatGrid>;
+using VdbIntersector = openvdb::tools::VolumeRayIntersector<openvdb::MaskGrid>;
 using VdbRay = VdbIntersector::RayType;
 
 struct ScatterVolume {
     const Volume* volume = nullptr;
-    openvdb::FloatGrid::ConstPtr indexGrid;       // the intersector points into it
+    openvdb::MaskGrid::ConstPtr occupancy;        // shifted by `shift`; the intersector points into it
+    Vec3d shift{0.0};                             // index point + shift = occupancy point
     std::shared_ptr<const VdbIntersector> intersector;
     Vec3d sigmaT, albedo;                         // per voxel length per unit density
     Phase phase = Phase::Isotropic;
@@ -32,6 +38,8 @@ struct ScatterVolume {
     // The world ray in index space, as OpenVDB's worldToIndex maps it (t
     // counts voxels), through the map itself: no shared_ptr copy per ray.
     VdbRay indexRay(const VdbRay& world) const { return world.applyInverseMap(*map); }
+    // An index-space ray as the intersector takes it.
+    VdbRay occupancyRay(const VdbRay& index) const { return VdbRay(index.eye() + shift, index.dir(), index.t0(), index.t1()); }
     // Voxel lengths per index unit along a unit index-space direction (1 on uniform grids).
     double voxelLengthsPerIndexUnit(const Vec3d& indexDir) const {
         if (uniform) return 1.0;
