@@ -85,8 +85,10 @@ void loadLeavesInParallel(const openvdb::GridBase::Ptr& base) {
         openvdb::tree::LeafManager<const typename GridT::TreeType> leaves(grid->tree());
         leaves.foreach([](const typename GridT::TreeType::LeafNodeType& leaf, std::size_t) { (void)leaf.buffer().data(); });
     } catch (...) {
-        // A leaf whose bytes failed to decode is left half loaded, and
-        // OpenVDB would free it twice: the grid is kept, never destroyed.
+        // A leaf whose bytes failed to decode is left half loaded (still
+        // marked out of core over its new buffer), and destroying it would
+        // free that buffer as OpenVDB's file record: the grid is kept, never
+        // destroyed (a few leaves' worth of memory per corrupt file).
         new openvdb::GridBase::Ptr(base);
         throw;
     }

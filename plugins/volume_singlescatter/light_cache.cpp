@@ -8,25 +8,17 @@
 #include <memory>
 
 #include "core/volume/leaf_reach.hpp"
+#include "core/volume/octant_shift.hpp"
 
 namespace weft {
 
 namespace {
 
-int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
 // Where the cache's voxel 0 lies in the density's index space: a multiple
 // of the cache's leaf width below the active voxels, so cache coordinates are
-// positive and density leaves map onto cache voxels alike. A volume around
-// the index origin would otherwise spread the cache's trees over the eight
-// octants, each with a top node of 256 KiB to clear.
-openvdb::Coord cacheOrigin(const openvdb::CoordBBox& active, int factor) {
-    if (active.empty()) return openvdb::Coord(0);
-    const int leafWidth = 8 * factor;
-    return openvdb::Coord((floorDiv(active.min().x(), leafWidth) - 1) * leafWidth,
-                          (floorDiv(active.min().y(), leafWidth) - 1) * leafWidth,
-                          (floorDiv(active.min().z(), leafWidth) - 1) * leafWidth);
-}
+// positive (one top node per tree: core/volume/octant_shift.hpp) and density
+// leaves map onto cache voxels alike.
+openvdb::Coord cacheOrigin(const openvdb::CoordBBox& active, int factor) { return widthBelow(active, 8 * factor); }
 
 // The cache voxels (`factor` >= 2 density voxels wide) holding the active
 // voxels of one density leaf, each marked once. The leaf's mask is read a

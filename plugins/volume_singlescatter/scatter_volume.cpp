@@ -3,19 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/volume/octant_shift.hpp"
+
 namespace weft {
 
 namespace {
 
-int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
 // The active voxels of `occupancy` (an index-space grid) shifted by whole
 // leaves to lie a leaf above the origin on every axis.
 openvdb::MaskGrid::Ptr shiftedOccupancy(const openvdb::FloatGrid& occupancy, openvdb::Coord& shift) {
-    const openvdb::CoordBBox box = occupancy.evalActiveVoxelBoundingBox();
-    shift = openvdb::Coord(0);
-    if (!box.empty())
-        for (int a = 0; a < 3; ++a) shift[a] = -(floorDiv(box.min()[a], 8) - 1) * 8;
+    shift = -widthBelow(occupancy.evalActiveVoxelBoundingBox(), 8);
     auto mask = openvdb::MaskGrid::create(false);
     mask->setTransform(occupancy.transform().copy());
     openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(mask->tree());

@@ -5,10 +5,8 @@
 // intersector needs uniform voxels; index-space rays work for any affine
 // transform), and the lengths that turn index units into voxel lengths.
 // The intersector's voxels are shifted by whole leaves so that their
-// coordinates are positive: a volume around the index origin would give
-// its tree a top node per octant (256 KiB each to clear, on one thread).
-// Rays enter it through occupancyRay, shifted alike; the times along a ray
-// are the same.
+// coordinates are positive (core/volume/octant_shift.hpp); rays enter it
+// through occupancyRay, shifted alike, and the times along a ray are the same.
 #include <openvdb/tools/RayIntersector.h>
 
 #include <memory>

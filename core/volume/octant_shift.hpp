@@ -1,0 +1,23 @@
+#pragma once
+// Trees weft builds over a volume's voxels (a light cache, a ray
+// intersector's topology) may use coordinates shifted by whole leaves.
+// OpenVDB's root keeps one top node of 32^3 entries (256 KiB, cleared when
+// made) per 4096^3 region a tree touches, so a volume around the index
+// origin costs eight of them, on one thread; shifted above the origin it
+// costs one.
+#include <openvdb/openvdb.h>
+
+namespace weft {
+
+// a / b rounded towards minus infinity (b > 0).
+inline int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// The multiple of `width` one width below the box's minimum on each axis:
+// coordinates of the box less it are at least `width`. Zero for an empty box.
+inline openvdb::Coord widthBelow(const openvdb::CoordBBox& box, int width) {
+    if (box.empty()) return openvdb::Coord(0);
+    return openvdb::Coord((floorDiv(box.min().x(), width) - 1) * width, (floorDiv(box.min().y(), width) - 1) * width,
+                          (floorDiv(box.min().z(), width) - 1) * width);
+}
+
+}  // namespace weft
