@@ -6,6 +6,7 @@
 // origin costs eight of them, on one thread; shifted above the origin it
 // costs one.
 #include <openvdb/openvdb.h>
+#include <openvdb/tree/ValueAccessor.h>
 
 namespace weft {
 
@@ -18,6 +19,20 @@ inline openvdb::Coord widthBelow(const openvdb::CoordBBox& box, int width) {
     if (box.empty()) return openvdb::Coord(0);
     return openvdb::Coord((floorDiv(box.min().x(), width) - 1) * width, (floorDiv(box.min().y(), width) - 1) * width,
                           (floorDiv(box.min().z(), width) - 1) * width);
+}
+
+// Adds the active voxels and tiles of `from`, moved by `shift` (a multiple
+// of 8: leaves stay leaves), to `to`.
+inline void addShiftedTopology(const openvdb::FloatTree& from, const openvdb::Coord& shift, openvdb::MaskTree& to) {
+    openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(to);
+    for (auto leaf = from.cbeginLeaf(); leaf; ++leaf)
+        if (!leaf->isEmpty()) acc.touchLeaf(leaf->origin() + shift)->setValueMask(leaf->getValueMask());
+    auto tile = from.cbeginValueOn();
+    tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only
+    for (; tile; ++tile) {
+        const openvdb::CoordBBox box = tile.getBoundingBox();
+        to.fill(openvdb::CoordBBox(box.min() + shift, box.max() + shift), true, true);
+    }
 }
 
 }  // namespace weft

@@ -209,12 +209,26 @@ using FileIdentity = std::tuple<std::string, dev_t, ino_t, off_t, time_t, long>;
 // Files this process has walked and found sound: the density, its role
 // grids and the grid-name lookup each open the same file, and one walk
 // checks every grid in it.
-bool walkedBefore(const FileIdentity& file, bool remember) {
-    static std::mutex mutex;
-    static std::set<FileIdentity> walked;
-    std::lock_guard<std::mutex> lock(mutex);
-    if (remember) walked.insert(file);
-    return walked.count(file) > 0;
+struct WalkedFiles {
+    std::mutex mutex;
+    std::set<FileIdentity> files;
+};
+
+WalkedFiles& walkedFiles() {
+    static WalkedFiles walked;
+    return walked;
+}
+
+bool walkedBefore(const FileIdentity& file) {
+    WalkedFiles& walked = walkedFiles();
+    std::lock_guard<std::mutex> lock(walked.mutex);
+    return walked.files.count(file) > 0;
+}
+
+void rememberWalked(const FileIdentity& file) {
+    WalkedFiles& walked = walkedFiles();
+    std::lock_guard<std::mutex> lock(walked.mutex);
+    walked.files.insert(file);
 }
 
 // The whole file in memory for the walk: mapped where the system can map
@@ -247,9 +261,9 @@ void preflightVdb(const std::string& path) {
     struct stat st {};
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return;  // the caller's checks name it
     const FileIdentity file{path, st.st_dev, st.st_ino, st.st_size, st.st_mtim.tv_sec, st.st_mtim.tv_nsec};
-    if (walkedBefore(file, false)) return;
+    if (walkedBefore(file)) return;
     walkFile(fd, std::uint64_t(st.st_size), path);
-    walkedBefore(file, true);
+    rememberWalked(file);
 }
 
 void preflightVdbBytes(const std::string& bytes, const std::string& name) { walk(bytes.data(), bytes.size(), name); }

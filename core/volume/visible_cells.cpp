@@ -69,9 +69,8 @@ CellBits visibleCellsOf(const Leaf& leaf, const openvdb::FloatGrid::ConstAccesso
     return visible;
 }
 
-}  // namespace
-
-namespace {
+// Offset 0 or 8 on each axis, one of a leaf's eight corners by the bits of `a`.
+openvdb::Coord cornerStep(int a) { return openvdb::Coord(8 * (a & 1), 8 * ((a >> 1) & 1), 8 * ((a >> 2) & 1)); }
 
 // The output leaf at `origin` (value 1 on its visible cells): the cells of
 // the up to eight grid leaves at origin + 8 {0,1}^3 that fall in it. Leaf
@@ -81,7 +80,7 @@ std::unique_ptr<Leaf> outputLeaf(const openvdb::Coord& origin, const std::unorde
                                  const std::vector<CellBits>& visible) {
     std::unique_ptr<Leaf> leaf;
     for (int a = 0; a < 8; ++a) {
-        const openvdb::Coord step(8 * (a & 1), 8 * ((a >> 1) & 1), 8 * ((a >> 2) & 1));  // 0 or 8 per axis
+        const openvdb::Coord step = cornerStep(a);
         const auto found = indexOf.find(origin + step);
         if (found == indexOf.end() || visible[found->second].none()) continue;
         const CellBits& cells = visible[found->second];
@@ -120,7 +119,7 @@ openvdb::FloatGrid::Ptr visibleCells(const openvdb::FloatGrid& grid, const Trans
     for (std::size_t i = 0; i < leaves.size(); ++i) {
         if (visible[i].none()) continue;
         indexOf.emplace(leaves[i]->origin(), i);
-        for (int a = 0; a < 8; ++a) origins.push_back(leaves[i]->origin() - openvdb::Coord(8 * (a & 1), 8 * ((a >> 1) & 1), 8 * ((a >> 2) & 1)));
+        for (int a = 0; a < 8; ++a) origins.push_back(leaves[i]->origin() - cornerStep(a));
     }
     std::sort(origins.begin(), origins.end());
     origins.erase(std::unique(origins.begin(), origins.end()), origins.end());

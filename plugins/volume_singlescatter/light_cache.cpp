@@ -52,11 +52,12 @@ void markLeafCoarse(const openvdb::FloatTree::LeafNodeType& leaf, const openvdb:
 // The density's active voxels and tiles at the cache's scale.
 openvdb::MaskTree coarseVoxels(const openvdb::FloatTree& density, const openvdb::Coord& origin, int factor) {
     openvdb::MaskTree coarse(false);
-    openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(coarse);
-    for (auto leaf = density.cbeginLeaf(); leaf; ++leaf) {
-        if (factor > 1) markLeafCoarse(*leaf, origin, factor, acc);
-        else if (!leaf->isEmpty()) acc.touchLeaf(leaf->origin() - origin)->setValueMask(leaf->getValueMask());
+    if (factor == 1) {
+        addShiftedTopology(density, -origin, coarse);
+        return coarse;
     }
+    openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(coarse);
+    for (auto leaf = density.cbeginLeaf(); leaf; ++leaf) markLeafCoarse(*leaf, origin, factor, acc);
     auto tile = density.cbeginValueOn();
     tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only: the leaves' voxels are marked above
     for (; tile; ++tile) {

@@ -15,15 +15,7 @@ openvdb::MaskGrid::Ptr shiftedOccupancy(const openvdb::FloatGrid& occupancy, ope
     shift = -widthBelow(occupancy.evalActiveVoxelBoundingBox(), 8);
     auto mask = openvdb::MaskGrid::create(false);
     mask->setTransform(occupancy.transform().copy());
-    openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(mask->tree());
-    for (auto leaf = occupancy.tree().cbeginLeaf(); leaf; ++leaf)
-        if (!leaf->isEmpty()) acc.touchLeaf(leaf->origin() + shift)->setValueMask(leaf->getValueMask());
-    auto tile = occupancy.tree().cbeginValueOn();
-    tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only
-    for (; tile; ++tile) {
-        const openvdb::CoordBBox b = tile.getBoundingBox();
-        mask->tree().fill(openvdb::CoordBBox(b.min() + shift, b.max() + shift), true, true);
-    }
+    addShiftedTopology(occupancy.tree(), shift, mask->tree());
     return mask;
 }
 
