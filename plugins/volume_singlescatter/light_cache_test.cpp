@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "core/base/rng.hpp"
 #include "core/volume/volume.hpp"
 #include "plugins/volume_singlescatter/light_cache.hpp"
 
@@ -19,10 +20,10 @@ int floorDivision(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 openvdb::FloatGrid::Ptr scatteredDensity() {
     initVdb();
     auto grid = openvdb::FloatGrid::create(0.0f);
-    std::uint32_t state = 7;
+    Rng rng(7);
     for (int i = 0; i < 3000; ++i) {
-        state = state * 1664525u + 1013904223u;
-        const openvdb::Coord c(int(state % 90) - 45, int((state >> 8) % 70) - 35, int((state >> 16) % 50) - 25);
+        const std::uint64_t bits = rng.next();
+        const openvdb::Coord c(int(bits % 90) - 45, int((bits >> 16) % 70) - 35, int((bits >> 32) % 50) - 25);
         grid->tree().setValue(c, 0.5f);
     }
     grid->tree().fill(openvdb::CoordBBox({3, -9, -17}, {20, 4, -1}), 1.0f, true);
