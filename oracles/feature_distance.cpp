@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/volume/octant_shift.hpp"
+
 namespace weft {
 
 double sliceOpacity(const Volume& volume, double spacing, float value) {
@@ -63,6 +65,23 @@ OracleField fieldOf(openvdb::FloatGrid::Ptr distance, float cap) {
 }
 
 }  // namespace
+
+openvdb::Coord oracleShift(const Volume& volume) {
+    // Room below the data for the candidates' one-voxel apron and every ring
+    // grown by blocks; fields grown ring by ring may reach further (they stay
+    // correct, only their trees cost more).
+    constexpr int kRoom = 8 * ((kMaxLeafReach + 1 + 7) / 8);
+    if (volume.activeBox.empty()) return openvdb::Coord(0);
+    return openvdb::Coord(kRoom) - widthBelow(volume.activeBox, 8);
+}
+
+openvdb::MaskGrid::Ptr shiftedMask(const openvdb::math::Transform& volumeTransform, const openvdb::Coord& shift) {
+    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(false);
+    openvdb::math::Transform::Ptr transform = volumeTransform.copy();
+    transform->preTranslate(-shift.asVec3d());
+    mask->setTransform(transform);
+    return mask;
+}
 
 OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx) {
     using namespace openvdb;
@@ -122,12 +141,11 @@ OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext
     return distanceFieldByRings(features, ctx);
 }
 
-openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx) {
+openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx, const openvdb::Coord& shift) {
     using namespace openvdb;
     const Vec3SGrid& emission = *ctx.volume.emission;
-    MaskGrid::Ptr mask = MaskGrid::create(false);
-    mask->setTransform(emission.transform().copy());
-    mask->tree().topologyUnion(emission.tree());
+    MaskGrid::Ptr mask = shiftedMask(emission.transform(), shift);
+    addShiftedTopology(emission.tree(), shift, mask->tree());
     mask->tree().voxelizeActiveTiles();
     tools::dilateActiveValues(mask->tree(), 1, tools::NN_FACE, tools::EXPAND_TILES);  // the edges of the glow
     const double threshold2 = ctx.epsilon * ctx.epsilon;
@@ -137,7 +155,7 @@ openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx) {
         for (auto it = leaf.beginValueOn(); it; ++it) {
             double g2 = 0;
             for (int axis = 0; axis < 3; ++axis) {
-                Coord lo = it.getCoord(), hi = lo;
+                Coord lo = it.getCoord() - shift, hi = lo;
                 --lo[axis], ++hi[axis];
                 const double g = 0.5 * (sliceEmission(acc.getValue(hi), ctx.sliceSpacing) - sliceEmission(acc.getValue(lo), ctx.sliceSpacing));
                 g2 += g * g;
@@ -149,11 +167,17 @@ openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx) {
     return mask;
 }
 
-OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx) {
-    if (!ctx.volume.emission) return distanceField(features, ctx);
-    openvdb::MaskGrid::Ptr merged = features.deepCopy();
-    merged->tree().topologyUnion(emissionFeatures(ctx)->tree());
-    return distanceField(*merged, ctx);
+OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx, const openvdb::Coord& shift) {
+    OracleField field;
+    if (!ctx.volume.emission) {
+        field = distanceField(features, ctx);
+    } else {
+        openvdb::MaskGrid::Ptr merged = features.deepCopy();
+        merged->tree().topologyUnion(emissionFeatures(ctx, shift)->tree());
+        field = distanceField(*merged, ctx);
+    }
+    field.shift = shift;
+    return field;
 }
 
 std::vector<BrickRange> brickRanges(const openvdb::FloatGrid& grid) {
@@ -180,11 +204,10 @@ std::vector<BrickRange> brickRanges(const openvdb::FloatGrid& grid) {
 }
 
 openvdb::MaskGrid::Ptr maskOfBricks(const std::vector<BrickRange>& bricks, const std::vector<bool>& isFeature,
-                                    const openvdb::math::Transform& transform) {
-    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(false);
-    mask->setTransform(transform.copy());
+                                    const openvdb::math::Transform& transform, const openvdb::Coord& shift) {
+    openvdb::MaskGrid::Ptr mask = shiftedMask(transform, shift);
     for (std::size_t i = 0; i < bricks.size(); ++i)
-        if (isFeature[i]) mask->tree().fill(bricks[i].box, true, true);
+        if (isFeature[i]) mask->tree().fill(openvdb::CoordBBox(bricks[i].box.min() + shift, bricks[i].box.max() + shift), true, true);
     mask->tree().voxelizeActiveTiles();
     return mask;
 }

@@ -16,13 +16,27 @@ namespace weft {
 // Opacity of one slice-spacing segment at a raw data value.
 double sliceOpacity(const Volume& volume, double spacing, float value);
 
+// Where the oracles' trees put the volume's voxel v: at v + oracleShift, a
+// whole number of leaves that moves every voxel the field can hold (the
+// active box, grown by the rings around features) above the index origin.
+// A tree over a volume around the origin then keeps one top node instead of
+// eight (core/volume/octant_shift.hpp). Zero for an empty volume.
+openvdb::Coord oracleShift(const Volume& volume);
+
+// An empty mask over the volume's voxels moved by `shift` (its transform
+// still maps them to the same world points).
+openvdb::MaskGrid::Ptr shiftedMask(const openvdb::math::Transform& volumeTransform, const openvdb::Coord& shift);
+
 // The sampling-distance field of a feature mask, in voxels: ctx.sliceSpacing
 // on and next to features, growing by one voxel per voxel of Chebyshev
 // distance, capped (and constant outside the stored band) at
 // 2^lmax * sliceSpacing. An emitting volume's emission features
 // (emissionFeatures) join the mask: every precomputed oracle keeps samples
 // dense where the glow changes, whatever it reads from the density.
-OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx);
+// `features` holds the volume's voxels moved by `shift` (oracleShift), and
+// so does the field.
+OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleContext& ctx,
+                               const openvdb::Coord& shift = openvdb::Coord(0));
 
 // The two ways distanceToFeatures builds the field of a mask; the values
 // are the same. By rings: OpenVDB's dilation one ring at a time, any cap.
@@ -36,7 +50,8 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
 // voxel, the emission's counterpart of gradient_alpha's opacity gradient.
 // Linear interpolation between distant samples is exact where emission is
 // constant, so only its changes are features. Needs ctx.volume.emission.
-openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx);
+// The mask holds them moved by `shift`.
+openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx, const openvdb::Coord& shift = openvdb::Coord(0));
 
 // The value range of one region of the grid: an 8^3 leaf brick with a
 // one-voxel apron (so a step between neighbouring bricks shows in both), or
@@ -47,8 +62,8 @@ struct BrickRange {
 };
 std::vector<BrickRange> brickRanges(const openvdb::FloatGrid& grid);
 
-// Marks whole bricks as features.
+// Marks whole bricks as features, moved by `shift`.
 openvdb::MaskGrid::Ptr maskOfBricks(const std::vector<BrickRange>& bricks, const std::vector<bool>& isFeature,
-                                    const openvdb::math::Transform& transform);
+                                    const openvdb::math::Transform& transform, const openvdb::Coord& shift);
 
 }  // namespace weft

@@ -12,17 +12,18 @@
 #include <cmath>
 #include <memory>
 
+#include "core/volume/octant_shift.hpp"
 #include "oracles/feature_distance.hpp"
 
 namespace weft {
 
 namespace {
 
-// Voxels that may hold a gradient: the active ones and their face neighbours.
-openvdb::MaskGrid::Ptr candidateVoxels(const openvdb::FloatGrid& grid) {
-    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(false);
-    mask->setTransform(grid.transform().copy());
-    mask->tree().topologyUnion(grid.tree());
+// Voxels that may hold a gradient: the active ones and their face
+// neighbours, moved by `shift`.
+openvdb::MaskGrid::Ptr candidateVoxels(const openvdb::FloatGrid& grid, const openvdb::Coord& shift) {
+    openvdb::MaskGrid::Ptr mask = shiftedMask(grid.transform(), shift);
+    addShiftedTopology(grid.tree(), shift, mask->tree());
     mask->tree().voxelizeActiveTiles();
     openvdb::tools::dilateActiveValues(mask->tree(), 1, openvdb::tools::NN_FACE, openvdb::tools::EXPAND_TILES);
     return mask;
@@ -56,6 +57,7 @@ class GradientTest {
 public:
     GradientTest(const OracleContext& ctx, const OpacityTable& alpha)
         : alpha_(alpha), acc_(ctx.volume.grid->getConstAccessor()), threshold2_(ctx.epsilon * ctx.epsilon) {}
+    // c: one of the volume's voxels.
     bool isFeature(const openvdb::Coord& c) {
         double g2 = 0;
         for (int axis = 0; axis < 3; ++axis) {
@@ -73,14 +75,15 @@ private:
     double threshold2_;
 };
 
-openvdb::MaskGrid::Ptr gradientFeatures(const OracleContext& ctx) {
-    openvdb::MaskGrid::Ptr mask = candidateVoxels(*ctx.volume.grid);
+// The feature voxels, moved by `shift`.
+openvdb::MaskGrid::Ptr gradientFeatures(const OracleContext& ctx, const openvdb::Coord& shift) {
+    openvdb::MaskGrid::Ptr mask = candidateVoxels(*ctx.volume.grid, shift);
     const auto alpha = std::make_unique<OpacityTable>(ctx);
     openvdb::tree::LeafManager<openvdb::MaskTree> leaves(mask->tree());
     leaves.foreach([&](openvdb::MaskTree::LeafNodeType& leaf, std::size_t) {
         GradientTest test(ctx, *alpha);
         for (auto it = leaf.beginValueOn(); it; ++it)
-            if (!test.isFeature(it.getCoord())) leaf.setValueOff(it.pos());
+            if (!test.isFeature(it.getCoord() - shift)) leaf.setValueOff(it.pos());
     });
     openvdb::tools::pruneInactive(mask->tree());
     return mask;
@@ -89,7 +92,10 @@ openvdb::MaskGrid::Ptr gradientFeatures(const OracleContext& ctx) {
 const OracleRegistrar registrar{{
     "gradient_alpha",
     "distance to the nearest voxel with |grad opacity| > epsilon (the paper's oracle)",
-    [](const OracleContext& ctx) { return distanceToFeatures(*gradientFeatures(ctx), ctx); },
+    [](const OracleContext& ctx) {
+        const openvdb::Coord shift = oracleShift(ctx.volume);
+        return distanceToFeatures(*gradientFeatures(ctx, shift), ctx, shift);
+    },
 }};
 
 }  // namespace

@@ -20,13 +20,13 @@ openvdb::MaskGrid::Ptr varyingBricks(const OracleContext& ctx) {
         const double alphaChange = std::expm1(-ext[0] * ctx.sliceSpacing) - std::expm1(-ext[1] * ctx.sliceSpacing);
         varying[i] = alphaChange > ctx.epsilon;
     }
-    return maskOfBricks(bricks, varying, ctx.volume.grid->transform());
+    return maskOfBricks(bricks, varying, ctx.volume.grid->transform(), oracleShift(ctx.volume));
 }
 
 const OracleRegistrar registrar{{
     "majorant",
     "per-brick value-range bound on opacity change (smooth bricks are skipped, empty or not)",
-    [](const OracleContext& ctx) { return distanceToFeatures(*varyingBricks(ctx), ctx); },
+    [](const OracleContext& ctx) { return distanceToFeatures(*varyingBricks(ctx), ctx, oracleShift(ctx.volume)); },
 }};
 
 }  // namespace

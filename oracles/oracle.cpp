@@ -9,6 +9,7 @@ OracleField paddedByReach(const OracleField& field, double reach, double minDist
     const auto shrink = [&](float d) { return float(std::max(minDistance, double(d) - reach)); };
     OracleField out;
     out.constant = shrink(field.constant);
+    out.shift = field.shift;
     if (!field.distance) return out;
     openvdb::FloatGrid::Ptr grid = field.distance->deepCopy();
     for (auto v = grid->tree().beginValueAll(); v; ++v) v.setValue(shrink(*v));  // voxels and tiles, on or off

@@ -29,8 +29,12 @@ struct OracleContext {
 struct OracleField {
     openvdb::FloatGrid::ConstPtr distance;  // null when constant
     float constant = 1.0f;                  // used when distance is null
+    // The grid's voxel v + shift holds the distance at the volume's voxel v
+    // (whole leaves: see oracleShift in oracles/feature_distance.hpp).
+    openvdb::Coord shift{0};
 
-    // Distance at an index-space voxel (nearest-voxel lookup).
+    // Distance at an index-space point of the volume (nearest-voxel lookup),
+    // through an accessor of `distance`.
     template <class Accessor>
     float at(const Accessor& acc, const openvdb::Vec3d& indexPos) const {
         if (!distance) return constant;
@@ -39,8 +43,11 @@ struct OracleField {
         constexpr double kFar = double(1 << 30);
         if (!(std::abs(indexPos.x()) < kFar && std::abs(indexPos.y()) < kFar && std::abs(indexPos.z()) < kFar))
             return distance->background();
-        return acc.getValue(openvdb::Coord::round(indexPos));
+        return acc.getValue(openvdb::Coord::round(indexPos) + shift);
     }
+
+    // Distance at one of the volume's voxels.
+    float atVoxel(const openvdb::Coord& voxel) const { return distance ? distance->tree().getValue(voxel + shift) : constant; }
 };
 
 // The field of a volume whose data move by up to `reach` voxels while the

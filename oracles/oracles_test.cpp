@@ -30,9 +30,7 @@ Volume boxVolume(int lo, int hi, double peak = 0.5) {
     return v;
 }
 
-float distanceAt(const OracleField& f, const Coord& c) {
-    return f.distance ? f.distance->tree().getValue(c) : f.constant;
-}
+float distanceAt(const OracleField& f, const Coord& c) { return f.atVoxel(c); }
 
 int chebyshev(const Coord& a, const Coord& b) {
     return std::max({std::abs(a.x() - b.x()), std::abs(a.y() - b.y()), std::abs(a.z() - b.z())});
@@ -140,7 +138,7 @@ TEST(FeatureDistance, PaddingByTheReachShrinksEveryDistance) {
         EXPECT_FLOAT_EQ(distanceAt(padded, Coord(k, -k, 0)), std::max(1.0f, distanceAt(f, Coord(k, -k, 0)) - 2.5f)) << k;
     EXPECT_FLOAT_EQ(distanceAt(padded, Coord(5000, 0, 0)), 13.5f);
     EXPECT_FLOAT_EQ(padded.distance->background(), 13.5f);
-    EXPECT_FLOAT_EQ(paddedByReach(f, 1000, 1.0).distance->tree().getValue(Coord(7, 0, 0)), 1.0f);
+    EXPECT_FLOAT_EQ(paddedByReach(f, 1000, 1.0).atVoxel(Coord(7, 0, 0)), 1.0f);
     EXPECT_EQ(paddedByReach(f, 0, 1.0).distance, f.distance);
     OracleField constant;
     constant.constant = 8;
@@ -206,6 +204,26 @@ TEST(MajorantOracle, SmoothBricksAreSkippedEvenWhenNotEmpty) {
     EXPECT_FLOAT_EQ(distanceAt(f, Coord(0, 20, 20)), 1.0f);    // boundary brick: opacity jumps across its apron
     EXPECT_FLOAT_EQ(distanceAt(f, Coord(12, 20, 20)), 5.0f);   // interior brick, 5 from the boundary bricks (x <= 7)
     EXPECT_FLOAT_EQ(distanceAt(f, Coord(24, 24, 24)), 8.0f);   // 17 from any boundary brick: capped
+}
+
+TEST(Oracles, AFieldAroundTheIndexOriginIsTheMovedFieldAndKeepsOneTopNode) {
+    // The same block of data around the index origin and moved far from it:
+    // each oracle gives every voxel the same distance, and its tree over the
+    // block around the origin keeps one top node, not one per octant.
+    const Volume around = boxVolume(-20, 13, 0.5), moved = boxVolume(-20 + 4000, 13 + 4000, 0.5);
+    for (const char* oracle : {"gradient_alpha", "vdb_topology", "majorant"}) {
+        const OracleField a = oracles().get(oracle).build({around, 1.0, 3, 0.01});
+        const OracleField b = oracles().get(oracle).build({moved, 1.0, 3, 0.01});
+        ASSERT_TRUE(a.distance && b.distance) << oracle;
+        EXPECT_EQ(a.distance->tree().root().childCount(), 1u) << oracle;
+        EXPECT_EQ(a.distance->activeVoxelCount(), b.distance->activeVoxelCount()) << oracle;
+        int mismatches = 0;
+        for (auto c = openvdb::CoordBBox(Coord(-32), Coord(25)).begin(); c; ++c)
+            mismatches += distanceAt(a, *c) != distanceAt(b, *c + Coord(4000));
+        EXPECT_EQ(mismatches, 0) << oracle;
+        const auto acc = a.distance->getConstAccessor();  // a lookup between voxels rounds to the nearest
+        EXPECT_FLOAT_EQ(a.at(acc, openvdb::Vec3d(-15.4, 2.2, -0.6)), distanceAt(a, Coord(-15, 2, -1))) << oracle;
+    }
 }
 
 TEST(Oracles, AdaptiveRendersStayWithinOne255thOfPreint) {

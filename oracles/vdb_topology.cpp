@@ -14,13 +14,13 @@ openvdb::MaskGrid::Ptr occupiedBricks(const OracleContext& ctx) {
     std::vector<bool> occupied(bricks.size());
     for (std::size_t i = 0; i < bricks.size(); ++i)
         occupied[i] = ctx.volume.tf.extinctionBounds(bricks[i].min, bricks[i].max)[1] > 0;
-    return maskOfBricks(bricks, occupied, ctx.volume.grid->transform());
+    return maskOfBricks(bricks, occupied, ctx.volume.grid->transform(), oracleShift(ctx.volume));
 }
 
 const OracleRegistrar registrar{{
     "vdb_topology",
     "empty space from the VDB tree: bricks the transfer function maps to zero extinction",
-    [](const OracleContext& ctx) { return distanceToFeatures(*occupiedBricks(ctx), ctx); },
+    [](const OracleContext& ctx) { return distanceToFeatures(*occupiedBricks(ctx), ctx, oracleShift(ctx.volume)); },
 }};
 
 }  // namespace

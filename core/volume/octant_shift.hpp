@@ -23,7 +23,8 @@ inline openvdb::Coord widthBelow(const openvdb::CoordBBox& box, int width) {
 
 // Adds the active voxels and tiles of `from`, moved by `shift` (a multiple
 // of 8: leaves stay leaves), to `to`.
-inline void addShiftedTopology(const openvdb::FloatTree& from, const openvdb::Coord& shift, openvdb::MaskTree& to) {
+template <class Tree>
+void addShiftedTopology(const Tree& from, const openvdb::Coord& shift, openvdb::MaskTree& to) {
     openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(to);
     for (auto leaf = from.cbeginLeaf(); leaf; ++leaf)
         if (!leaf->isEmpty()) acc.touchLeaf(leaf->origin() + shift)->setValueMask(leaf->getValueMask());
