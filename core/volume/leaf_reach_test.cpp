@@ -76,3 +76,26 @@ TEST(LeafReach, DistancesAreChebyshevDistancesCappedPastTheReach) {
     EXPECT_GT(checked, 512 * 8);
     EXPECT_THROW(LeafDistances(kMaxLeafReach + 1), std::invalid_argument);
 }
+
+TEST(LeafReach, LeafOriginsNearAreEveryLeafAVoxelWithinReachCanLieIn) {
+    // Against the definition: every leaf whose box comes within `reach`
+    // voxels (Chebyshev) of a mask leaf's box, each once, sorted.
+    openvdb::MaskTree mask = scatteredMask(7);
+    mask.voxelizeActiveTiles();
+    std::vector<Coord> maskLeaves;
+    for (auto leaf = mask.cbeginLeaf(); leaf; ++leaf) maskLeaves.push_back(leaf->origin());
+    for (int reach : {0, 1, 7, 8, 9, 16}) {
+        std::vector<Coord> expected;
+        for (const Coord& o : maskLeaves)
+            for (int dx = -24; dx <= 24; dx += 8)
+                for (int dy = -24; dy <= 24; dy += 8)
+                    for (int dz = -24; dz <= 24; dz += 8) {
+                        // Chebyshev distance between the two boxes' nearest voxels (<= 0: the same box)
+                        const int distance = std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) - 7;
+                        if (distance <= reach) expected.push_back(o + Coord(dx, dy, dz));
+                    }
+        std::sort(expected.begin(), expected.end());
+        expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+        EXPECT_EQ(leafOriginsNear(mask, reach), expected) << reach;
+    }
+}
