@@ -115,10 +115,12 @@ public:
             Pyramid pyramid(scene.camera, volumes, slices, params_.lmax, pw, ph, s.width, s.height);
             if (accel) pyramid.setSurfaces(surfaces.tHit, slices);
             SliceContext sc{volumes, fields, slices, tables, params_.lmax, ctx.counters, time};
+            SliceWorkers workers(sc);
             for (int i = 0; i <= slices.imax; ++i) {
-                projectSlice(pyramid, sc, i);
+                projectSlice(pyramid, workers, i);
                 progress.advance();
             }
+            workers.flush();
             accumulate(image, pyramid.image(s.width, s.height), times.size());
         }
         progress.finish();
@@ -220,19 +222,18 @@ private:
     // Figure 4 for slice i: levels l_slice down to 0, tiles of a level in
     // parallel. Off the full slices a pixel does work only when it is due,
     // so tiles with nothing due are passed over whole.
-    void projectSlice(Pyramid& pyramid, SliceContext& sc, int i) const {
+    void projectSlice(Pyramid& pyramid, SliceWorkers& workers, int i) const {
         const int lslice = sliceLevel(i, params_.lmax);
         const bool fullSlice = lslice == params_.lmax;
         for (int l = lslice; l >= 0; --l) {
             PyramidLevel& level = pyramid.level(l);
             tbb::parallel_for(tbb::blocked_range<int>(0, level.tilesY), [&](const tbb::blocked_range<int>& r) {
-                SliceWorker worker(sc);
+                SliceWorker& worker = workers.local();
                 for (int ty = r.begin(); ty != r.end(); ++ty)
                     for (int tx = 0; tx < level.tilesX; ++tx) {
                         std::uint8_t& due = level.tileDueLevel[std::size_t(ty) * level.tilesX + tx];
                         if (fullSlice || due <= lslice) due = worker.tile(pyramid, l, lslice, i, tx, ty);
                     }
-                worker.flush();
             });
         }
     }

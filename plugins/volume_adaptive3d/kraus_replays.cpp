@@ -25,7 +25,6 @@
 //                then z = 4 (sample), 2 (only accumulate) or 0 (neither)
 //   sample       drawn at 3 + 6 (imax - i): passes where z = 4 (no test on lmax)
 //   accumulate   l = 0, drawn at 1 + 6 (imax - i): z = 2 or 4 (no test when l_slice = lmax)
-#include <tbb/enumerable_thread_specific.h>
 
 #include <cmath>
 #include <memory>
@@ -63,14 +62,9 @@ struct KrausState {
         return v;
     }
 
-    SliceWorker& worker() {
-        std::unique_ptr<SliceWorker>& w = workers.local();
-        if (!w) w = std::make_unique<SliceWorker>(sc);
-        return *w;
-    }
+    SliceWorker& worker() { return workers.local(); }
     CounterMap finish() {
-        for (auto& w : workers)
-            if (w) w->flush();
+        workers.flush();
         counters.add(kSlices, slices.imax + 1);
         return counters.merged();
     }
@@ -86,7 +80,7 @@ struct KrausState {
     SliceTables tables;
     Counters counters;
     SliceContext sc;
-    tbb::enumerable_thread_specific<std::unique_ptr<SliceWorker>> workers;
+    SliceWorkers workers{sc};
 };
 
 // One render target per level, sized like the level's image.

@@ -9,7 +9,10 @@
 #include <climits>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include "core/base/counters.hpp"
 #include "core/image/image.hpp"
@@ -149,6 +152,30 @@ private:
     SegmentTables* tables0_ = nullptr;
     std::int64_t samples_ = 0, oracleSamples_ = 0, syntheses_ = 0, composites_ = 0;
     std::int64_t samplesPerLevel_[8] = {};  // where the samples go: volume.samples.level<l>
+};
+
+// One SliceWorker per thread for a whole pass: its samplers, accessors
+// (each registered with its tree) and buffers are made once per thread, not
+// once per parallel chunk of every level of every slice. A worker's
+// operations must not wait on parallel work: the waiting thread could pick
+// up another chunk and enter its own worker again.
+class SliceWorkers {
+public:
+    explicit SliceWorkers(SliceContext& sc) : sc_(sc) {}
+    SliceWorker& local() {
+        std::unique_ptr<SliceWorker>& w = workers_.local();
+        if (!w) w = std::make_unique<SliceWorker>(sc_);
+        return *w;
+    }
+    // Adds every worker's counts to the counters; once, at the pass's end.
+    void flush() {
+        for (auto& w : workers_)
+            if (w) w->flush();
+    }
+
+private:
+    SliceContext& sc_;
+    tbb::enumerable_thread_specific<std::unique_ptr<SliceWorker>> workers_;
 };
 
 }  // namespace weft
