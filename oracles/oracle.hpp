@@ -41,9 +41,9 @@ struct OracleField {
         // Beyond int range (or NaN) a Coord cannot be formed; the grid's
         // background is what it holds there.
         constexpr double kFar = double(1 << 30);
-        if (!(std::abs(indexPos.x()) < kFar && std::abs(indexPos.y()) < kFar && std::abs(indexPos.z()) < kFar))
-            return distance->background();
-        return acc.getValue(openvdb::Coord::round(indexPos) + shift);
+        const openvdb::Vec3d p = indexPos + shift.asVec3d();
+        if (!(std::abs(p.x()) < kFar && std::abs(p.y()) < kFar && std::abs(p.z()) < kFar)) return distance->background();
+        return acc.getValue(openvdb::Coord::round(p));
     }
 
     // Distance at one of the volume's voxels.

@@ -226,6 +226,18 @@ TEST(Oracles, AFieldAroundTheIndexOriginIsTheMovedFieldAndKeepsOneTopNode) {
     }
 }
 
+TEST(Oracles, AVolumeNearTheEndOfIntRangeIsLookedUpWithoutLeavingIt) {
+    // Its field holds it moved by almost all of int range: a lookup far on
+    // the other side reads the background instead of overflowing.
+    const Volume far = boxVolume(2000000000, 2000000040, 0.5);
+    const OracleField f = oracles().get("gradient_alpha").build({far, 1.0, 3, 0.01});
+    ASSERT_TRUE(f.distance);
+    const auto acc = f.distance->getConstAccessor();
+    EXPECT_FLOAT_EQ(f.at(acc, openvdb::Vec3d(-1.0e9, 0, 0)), f.distance->background());
+    EXPECT_FLOAT_EQ(f.at(acc, openvdb::Vec3d(2000000020.2, 2000000019.9, 2000000020)), 8.0f);  // 20 voxels inside: capped
+    EXPECT_FLOAT_EQ(f.at(acc, openvdb::Vec3d(2000000000, 2000000020, 2000000020)), 1.0f);     // on a face
+}
+
 TEST(Oracles, AdaptiveRendersStayWithinOne255thOfPreint) {
     const std::string smoke = std::string(WEFT_SOURCE_DIR) + "/data/smoke_small.vdb";
     const RenderOutcome ref = test::render(smoke, "96x96", {}, "volume.preint");
