@@ -75,12 +75,25 @@ openvdb::Coord oracleShift(const Volume& volume) {
     return openvdb::Coord(kRoom) - widthBelow(volume.activeBox, 8);
 }
 
-openvdb::MaskGrid::Ptr shiftedMask(const openvdb::math::Transform& volumeTransform, const openvdb::Coord& shift) {
-    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(false);
-    openvdb::math::Transform::Ptr transform = volumeTransform.copy();
-    transform->preTranslate(-shift.asVec3d());
-    mask->setTransform(transform);
+namespace {
+
+template <class GridT>
+openvdb::MaskGrid::Ptr activeAndFaceNeighboursOf(const GridT& grid, const openvdb::Coord& shift) {
+    openvdb::MaskGrid::Ptr mask = shiftedMask(grid.transform(), shift);
+    addShiftedTopology(grid.tree(), shift, mask->tree());
+    mask->tree().voxelizeActiveTiles();
+    openvdb::tools::dilateActiveValues(mask->tree(), 1, openvdb::tools::NN_FACE, openvdb::tools::EXPAND_TILES);
     return mask;
+}
+
+}  // namespace
+
+openvdb::MaskGrid::Ptr activeAndFaceNeighbours(const openvdb::FloatGrid& grid, const openvdb::Coord& shift) {
+    return activeAndFaceNeighboursOf(grid, shift);
+}
+
+openvdb::MaskGrid::Ptr activeAndFaceNeighbours(const openvdb::Vec3SGrid& grid, const openvdb::Coord& shift) {
+    return activeAndFaceNeighboursOf(grid, shift);
 }
 
 OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx) {
@@ -144,10 +157,7 @@ OracleField distanceField(const openvdb::MaskGrid& features, const OracleContext
 openvdb::MaskGrid::Ptr emissionFeatures(const OracleContext& ctx, const openvdb::Coord& shift) {
     using namespace openvdb;
     const Vec3SGrid& emission = *ctx.volume.emission;
-    MaskGrid::Ptr mask = shiftedMask(emission.transform(), shift);
-    addShiftedTopology(emission.tree(), shift, mask->tree());
-    mask->tree().voxelizeActiveTiles();
-    tools::dilateActiveValues(mask->tree(), 1, tools::NN_FACE, tools::EXPAND_TILES);  // the edges of the glow
+    MaskGrid::Ptr mask = activeAndFaceNeighbours(emission, shift);  // the glow and its edges
     const double threshold2 = ctx.epsilon * ctx.epsilon;
     tree::LeafManager<MaskTree> leaves(mask->tree());
     leaves.foreach([&](MaskTree::LeafNodeType& leaf, std::size_t) {

@@ -23,9 +23,11 @@ double sliceOpacity(const Volume& volume, double spacing, float value);
 // eight (core/volume/octant_shift.hpp). Zero for an empty volume.
 openvdb::Coord oracleShift(const Volume& volume);
 
-// An empty mask over the volume's voxels moved by `shift` (its transform
-// still maps them to the same world points).
-openvdb::MaskGrid::Ptr shiftedMask(const openvdb::math::Transform& volumeTransform, const openvdb::Coord& shift);
+// The active voxels of a grid and their face neighbours, moved by `shift`:
+// every voxel where a central difference over the grid can be non-zero
+// (the background beyond the data counts, so its edges are included).
+openvdb::MaskGrid::Ptr activeAndFaceNeighbours(const openvdb::FloatGrid& grid, const openvdb::Coord& shift);
+openvdb::MaskGrid::Ptr activeAndFaceNeighbours(const openvdb::Vec3SGrid& grid, const openvdb::Coord& shift);
 
 // The sampling-distance field of a feature mask, in voxels: ctx.sliceSpacing
 // on and next to features, growing by one voxel per voxel of Chebyshev

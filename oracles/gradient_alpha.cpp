@@ -4,7 +4,6 @@
 // function, so the oracle is built once per volume, transfer function and
 // spacing. Gradients are central differences over voxels next to any active
 // voxel (the background beyond counts, so edges of the data are features).
-#include <openvdb/tools/Morphology.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
 
@@ -12,22 +11,11 @@
 #include <cmath>
 #include <memory>
 
-#include "core/volume/octant_shift.hpp"
 #include "oracles/feature_distance.hpp"
 
 namespace weft {
 
 namespace {
-
-// Voxels that may hold a gradient: the active ones and their face
-// neighbours, moved by `shift`.
-openvdb::MaskGrid::Ptr candidateVoxels(const openvdb::FloatGrid& grid, const openvdb::Coord& shift) {
-    openvdb::MaskGrid::Ptr mask = shiftedMask(grid.transform(), shift);
-    addShiftedTopology(grid.tree(), shift, mask->tree());
-    mask->tree().voxelizeActiveTiles();
-    openvdb::tools::dilateActiveValues(mask->tree(), 1, openvdb::tools::NN_FACE, openvdb::tools::EXPAND_TILES);
-    return mask;
-}
 
 // Slice opacity of a data value through a table over the transfer
 // function's range (one exp per entry instead of six per voxel).
@@ -77,7 +65,7 @@ private:
 
 // The feature voxels, moved by `shift`.
 openvdb::MaskGrid::Ptr gradientFeatures(const OracleContext& ctx, const openvdb::Coord& shift) {
-    openvdb::MaskGrid::Ptr mask = candidateVoxels(*ctx.volume.grid, shift);
+    openvdb::MaskGrid::Ptr mask = activeAndFaceNeighbours(*ctx.volume.grid, shift);  // where a gradient can be
     const auto alpha = std::make_unique<OpacityTable>(ctx);
     openvdb::tree::LeafManager<openvdb::MaskTree> leaves(mask->tree());
     leaves.foreach([&](openvdb::MaskTree::LeafNodeType& leaf, std::size_t) {

@@ -36,4 +36,14 @@ void addShiftedTopology(const Tree& from, const openvdb::Coord& shift, openvdb::
     }
 }
 
+// An empty mask over a grid's voxels moved by `shift`: its transform still
+// maps each moved voxel to the world point of the original.
+inline openvdb::MaskGrid::Ptr shiftedMask(const openvdb::math::Transform& gridTransform, const openvdb::Coord& shift) {
+    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(false);
+    openvdb::math::Transform::Ptr transform = gridTransform.copy();
+    transform->preTranslate(-shift.asVec3d());
+    mask->setTransform(transform);
+    return mask;
+}
+
 }  // namespace weft

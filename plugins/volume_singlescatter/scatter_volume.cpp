@@ -13,8 +13,7 @@ namespace {
 // leaves to lie a leaf above the origin on every axis.
 openvdb::MaskGrid::Ptr shiftedOccupancy(const openvdb::FloatGrid& occupancy, openvdb::Coord& shift) {
     shift = -widthBelow(occupancy.evalActiveVoxelBoundingBox(), 8);
-    auto mask = openvdb::MaskGrid::create(false);
-    mask->setTransform(occupancy.transform().copy());
+    openvdb::MaskGrid::Ptr mask = shiftedMask(occupancy.transform(), shift);
     addShiftedTopology(occupancy.tree(), shift, mask->tree());
     return mask;
 }
