@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/volume/leaf_sampler.hpp"  // floorToInt
 
 namespace weft {
@@ -81,6 +84,111 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::of(const openvdb::FloatGrid& cells
     return blocks;
 }
 
+void VisibleBlocks::Box::add(int l0, int l1, int l2, int h0, int h1, int h2) {
+    const int l[3] = {l0, l1, l2}, h[3] = {h0, h1, h2};
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = std::uint8_t(std::min<int>(lo[a], l[a]));
+        hi[a] = std::uint8_t(std::max<int>(hi[a], h[a]));
+    }
+}
+
+bool VisibleBlocks::allocate(const openvdb::CoordBBox& box, std::size_t maxBlocks) {
+    origin_ = openvdb::Coord(box.min().x() & ~7, box.min().y() & ~7, box.min().z() & ~7);
+    double count = 1;
+    for (int a = 0; a < 3; ++a) {
+        dims_[a] = blockOf(box.max()[a]) - blockOf(box.min()[a]) + 1;
+        count *= dims_[a];
+    }
+    if (count > double(maxBlocks)) return false;
+    boxes_.resize(std::size_t(count));
+    return true;
+}
+
+VisibleBlocks::Box& VisibleBlocks::blockAt(const openvdb::Coord& voxel) {
+    const openvdb::Coord b = voxel - origin_;
+    return boxes_[indexOf(blockOf(b.x()), blockOf(b.y()), blockOf(b.z()))];
+}
+
+namespace {
+
+// Per axis, the bits of the local coordinates (0..7) where a leaf holds a
+// value at or above the cutoff; zero where none does. Their lowest and
+// highest bits bound those voxels (a set's box is its projections' box).
+struct AxisBits {
+    unsigned bits[3] = {0, 0, 0};
+    bool none() const { return bits[0] == 0; }
+    int lo(int a) const { return __builtin_ctz(bits[a]); }
+    int hi(int a) const { return 31 - __builtin_clz(bits[a]); }
+};
+
+AxisBits reachingBits(const openvdb::FloatTree::LeafNodeType& leaf, float cutoff) {
+    AxisBits out;
+    const float* v = leaf.buffer().data();
+    for (int n = 0; n < int(openvdb::FloatTree::LeafNodeType::SIZE); ++n)
+        if (v[n] >= cutoff) out.bits[0] |= 1u << (n >> 6), out.bits[1] |= 1u << (n >> 3 & 7), out.bits[2] |= 1u << (n & 7);
+    return out;
+}
+
+}  // namespace
+
+std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid& grid, float cutoff, std::size_t maxBlocks) {
+    if (!(grid.background() < cutoff)) return nullptr;
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    std::vector<const Leaf*> leaves;
+    leaves.reserve(grid.tree().leafCount());
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
+    std::vector<AxisBits> bits(leaves.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) bits[i] = reachingBits(*leaves[i], cutoff);
+    });
+    // Cells [c, c + 1) reach the cutoff for c in [voxel - 1, voxel] on each
+    // axis: a leaf's reaching voxels [lo, hi] make the cells [lo - 1, hi],
+    // and a tile's [min - 1, max].
+    std::vector<openvdb::CoordBBox> tiles;
+    auto tile = grid.tree().cbeginValueAll();
+    tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
+    for (; tile; ++tile)
+        if (*tile >= cutoff) tiles.push_back(tile.getBoundingBox());
+    openvdb::CoordBBox box;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+        if (bits[i].none()) continue;
+        const openvdb::Coord o = leaves[i]->origin();
+        box.expand(openvdb::CoordBBox(o.offsetBy(bits[i].lo(0) - 1, bits[i].lo(1) - 1, bits[i].lo(2) - 1),
+                                      o.offsetBy(bits[i].hi(0), bits[i].hi(1), bits[i].hi(2))));
+    }
+    for (const openvdb::CoordBBox& t : tiles) box.expand(openvdb::CoordBBox(t.min().offsetBy(-1), t.max()));
+    auto blocks = std::make_unique<VisibleBlocks>();
+    if (box.empty()) {  // nothing reaches: every ray's intervals are empty
+        blocks->origin_ = openvdb::Coord(0);
+        blocks->clearance_.clear();
+        return blocks;
+    }
+    if (!blocks->allocate(box, maxBlocks)) return nullptr;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+        if (bits[i].none()) continue;
+        const AxisBits& b = bits[i];
+        const openvdb::Coord o = leaves[i]->origin();
+        // Per axis the cells in this block, [max(lo - 1, 0), hi], and, when
+        // lo is 0, the one cell (7) of the block below along it.
+        for (int j = 0; j < 8; ++j) {  // j = bx << 2 | by << 1 | bz: 1 on an axis is the block below
+            const int below[3] = {j >> 2 & 1, j >> 1 & 1, j & 1};
+            int l[3], h[3];
+            bool inside = true;
+            for (int a = 0; a < 3; ++a) {
+                if (below[a]) inside = inside && b.lo(a) == 0, l[a] = h[a] = 7;
+                else l[a] = std::max(b.lo(a) - 1, 0), h[a] = b.hi(a);
+            }
+            if (inside) blocks->blockAt(o.offsetBy(-8 * below[0], -8 * below[1], -8 * below[2])).add(l[0], l[1], l[2], h[0], h[1], h[2]);
+        }
+    }
+    for (const openvdb::CoordBBox& t : tiles)
+        for (int x = t.min().x() - 8; x <= t.max().x(); x += 8)
+            for (int y = t.min().y() - 8; y <= t.max().y(); y += 8)
+                for (int z = t.min().z() - 8; z <= t.max().z(); z += 8) blocks->blockAt(openvdb::Coord(x, y, z)).add(0, 0, 0, 7, 7, 7);
+    blocks->measureClearance();
+    return blocks;
+}
+
 std::size_t VisibleBlocks::visibleBlockCount() const {
     return std::size_t(std::count_if(boxes_.begin(), boxes_.end(), [](const Box& b) { return !b.empty(); }));
 }
@@ -114,6 +222,7 @@ void VisibleBlocks::measureClearance() {
 }
 
 void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector<RayInterval>& out) const {
+    if (boxes_.empty()) return;  // nothing visible
     const WalkRay ray(indexRay);
     const Vec3d lo = origin_.asVec3d();
     double tIn = indexRay.t0, tOut = indexRay.t1;

@@ -28,6 +28,16 @@ public:
     // the HDDA serves it).
     static std::unique_ptr<VisibleBlocks> of(const openvdb::FloatGrid& cells, std::size_t maxBlocks = std::size_t(1) << 22);
 
+    // The blocks straight from a density grid's values for a march that
+    // counts densities below `cutoff` as empty: a lookup interpolates its
+    // cell's eight corners, so it reaches the cutoff only in a cell with a
+    // corner at or above it; each block's box holds those cells (the cells
+    // just below such a voxel, on the block's low faces, spill into the
+    // blocks below). Null as of() is, and where the background reaches the
+    // cutoff (nothing can be skipped); an empty array where nothing reaches it.
+    static std::unique_ptr<VisibleBlocks> reaching(const openvdb::FloatGrid& grid, float cutoff,
+                                                   std::size_t maxBlocks = std::size_t(1) << 22);
+
     // Appends the stretches of `ray` (within [ray.t0, ray.t1]) that cross a
     // visible box, in order, overlapping ones joined, each divided by
     // `perU` (index units per march unit).
@@ -40,7 +50,10 @@ private:
     struct Box {  // voxel offsets in the block; lo > hi: no visible cell
         std::uint8_t lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
         bool empty() const { return lo[0] > hi[0]; }
+        void add(int l0, int l1, int l2, int h0, int h1, int h2);  // joins the box [l, h] (offsets 0..7)
     };
+    bool allocate(const openvdb::CoordBBox& box, std::size_t maxBlocks);  // false: too many blocks
+    Box& blockAt(const openvdb::Coord& voxel);
     void measureClearance();
     std::size_t indexOf(int i, int j, int k) const { return (std::size_t(i) * dims_[1] + j) * dims_[2] + k; }
 

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <openvdb/tools/Interpolation.h>
+
 #include <cmath>
 #include <random>
 
@@ -117,6 +119,69 @@ TEST(VisibleBlocks, NothingVisibleOrTooManyBlocksLeavesItToTheHdda) {
     ASSERT_TRUE(fits);
     EXPECT_EQ(fits->blockCount(), 101u * 101u * 101u);
     EXPECT_EQ(fits->visibleBlockCount(), 2u);
+}
+
+// VisibleBlocks::reaching must hand a march every sample whose trilinear
+// lookup reaches the cutoff: values above and below it, negative ones, an
+// inactive voxel above it, a tile, on both sides of the origin.
+openvdb::FloatGrid::Ptr densityAroundTheOrigin(std::mt19937& rng) {
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    std::uniform_int_distribution<int> at(-40, 40);
+    std::uniform_real_distribution<float> value(-0.2f, 1.0f);
+    for (int n = 0; n < 600; ++n) grid->tree().setValueOn(openvdb::Coord(at(rng), at(rng), at(rng)), value(rng));
+    grid->tree().setValueOff(openvdb::Coord(-17, 9, 33), 0.8f);  // inactive, yet read by lookups
+    grid->tree().addTile(1, openvdb::Coord(128, 0, 0), 0.5f, true);  // a whole 128^3 node at 0.5
+    return grid;
+}
+
+TEST(VisibleBlocks, ReachingHandsEveryLookupAtTheCutoffToTheMarch) {
+    initVdb();
+    std::mt19937 rng(29);
+    const openvdb::FloatGrid::Ptr grid = densityAroundTheOrigin(rng);
+    const float cutoff = 0.3f;
+    const auto blocks = VisibleBlocks::reaching(*grid, cutoff);
+    ASSERT_TRUE(blocks);
+    EXPECT_LT(blocks->visibleBlockCount(), blocks->blockCount() / 2);
+    const openvdb::FloatGrid::ConstAccessor acc = grid->getConstAccessor();
+    std::uniform_real_distribution<double> end(-50.0, 270.0), side(-50.0, 50.0);
+    std::vector<RayInterval> out;
+    long reaching = 0, covered = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        Vec3d a(side(rng), side(rng), side(rng)), b(end(rng), side(rng), side(rng));
+        if (trial % 4 == 0) b.y() = a.y(), b.z() = a.z();  // along an axis
+        if (trial % 8 == 1) a = Vec3d(-17.5, 8.5, 32.5), b = Vec3d(-16.0, 10.0, 34.0);  // through the inactive voxel's cells
+        const IndexRay ray = rayThrough(a, b);
+        out.clear();
+        blocks->intervals(ray, 1.0, out);
+        for (std::size_t i = 1; i < out.size(); ++i) ASSERT_GT(out[i].lo, out[i - 1].hi);
+        for (double t = ray.t0; t < ray.t1; t += 0.01) {
+            bool in = false;
+            for (const RayInterval& iv : out) in = in || (t >= iv.lo && t <= iv.hi);
+            covered += in;
+            if (!(openvdb::tools::BoxSampler::sample(acc, ray.at(t)) >= cutoff)) continue;
+            ++reaching;
+            ASSERT_TRUE(in) << "trial " << trial << " t " << t << " at " << ray.at(t);
+        }
+    }
+    EXPECT_GT(reaching, 2000);
+    EXPECT_LT(covered, 20 * reaching);  // little besides
+}
+
+TEST(VisibleBlocks, ReachingNothingSkipsEverythingAndABackgroundAtTheCutoffSkipsNothing) {
+    initVdb();
+    auto low = openvdb::FloatGrid::create(0.0f);
+    low->tree().setValueOn(openvdb::Coord(3, 4, 5), 0.1f);
+    const auto none = VisibleBlocks::reaching(*low, 0.5f);
+    ASSERT_TRUE(none);
+    EXPECT_EQ(none->blockCount(), 0u);
+    std::vector<RayInterval> out;
+    none->intervals(rayThrough(Vec3d(-5.0), Vec3d(20.0)), 1.0, out);
+    EXPECT_TRUE(out.empty());
+    EXPECT_FALSE(VisibleBlocks::reaching(*openvdb::FloatGrid::create(0.5f), 0.5f));  // empty space reaches it
+    auto wide = openvdb::FloatGrid::create(0.0f);
+    wide->tree().setValueOn(openvdb::Coord(0, 0, 0), 1.0f);
+    wide->tree().setValueOn(openvdb::Coord(800, 800, 800), 1.0f);
+    EXPECT_FALSE(VisibleBlocks::reaching(*wide, 0.5f, 1000000));  // too many blocks
 }
 
 }  // namespace

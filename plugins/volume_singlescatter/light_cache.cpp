@@ -9,6 +9,7 @@
 
 #include "core/volume/leaf_reach.hpp"
 #include "core/volume/octant_shift.hpp"
+#include "core/volume/volume_ray.hpp"
 
 namespace weft {
 
@@ -106,8 +107,11 @@ void fillCache(openvdb::FloatGrid& cache, const Make& makeState, const Value& va
 
 }  // namespace
 
-PathMarcher::PathMarcher(const Volume& occluder, const DirectionalOrPointLight& light, const LightCacheSettings& s)
-    : occluder_(occluder), light_(light), s_(s), acc_(occluder.grid->getConstAccessor()),
+MarchRegion::MarchRegion(const Volume& occluder, float cutoff) : blocks_(VisibleBlocks::reaching(*occluder.grid, cutoff)) {}
+
+PathMarcher::PathMarcher(const Volume& occluder, const MarchRegion& region, const DirectionalOrPointLight& light,
+                         const LightCacheSettings& s)
+    : occluder_(occluder), region_(region), light_(light), s_(s), acc_(occluder.grid->getConstAccessor()),
       sampler_(acc_, occluder.grid->transform()), box_(occluder.indexBox()), voxelLength_(occluder.voxelLength()),
       uniform_(occluder.grid->transform().hasUniformScale()) {
     const auto& xf = occluder.grid->transform();
@@ -135,12 +139,32 @@ float PathMarcher::densityPath(const Vec3d& x) {
     // Points outside the box (another volume's voxels, surfaces) start at
     // the entry; samples before it read nothing, so skipping them changes nothing.
     const double tEnter = entryDistance(x, dir);
+    if (!(tEnter < tMax)) return 0.0f;
     double D = 0;
-    for (double t = 0.5 * step; t < tMax; t += step) {
-        if (t < tEnter) continue;
-        const double rho = sampler_.isSample(x + dir * t);
+    // One sample at t = (n + 1/2) step; false once the path is opaque.
+    const auto add = [&](double n) {
+        const double t = (n + 0.5) * step;
+        const Vec3d p = x + dir * t;
+        const double rho = sampler_.isSample(p);
         if (std::isfinite(rho) && rho > 0 && rho >= s_.cutoff) D += rho * s_.step / (1.0 + s_.gain * (t * k));
-        if (D > stopDepth_) break;
+        return D <= stopDepth_;
+    };
+    const auto firstAtOrAfter = [&](double t) { return std::max(0.0, std::ceil(t / step - 0.5)); };
+    if (!region_.blocks()) {
+        for (double n = firstAtOrAfter(tEnter); (n + 0.5) * step < tMax; ++n)
+            if (!add(n)) break;
+        return float(D);
+    }
+    // Only where the path crosses the boxes of cells that reach the cutoff;
+    // the intervals are ordered and disjoint, nNext keeps it so at their ends.
+    intervals_.clear();
+    region_.blocks()->intervals(IndexRay{x, dir, tEnter, tMax}, 1.0, intervals_);
+    double nNext = 0;
+    for (const RayInterval& in : intervals_) {
+        for (double n = std::max(nNext, firstAtOrAfter(in.lo)); (n + 0.5) * step <= in.hi && (n + 0.5) * step < tMax; ++n) {
+            nNext = n + 1;
+            if (!add(n)) return float(D);
+        }
     }
     return float(D);
 }
@@ -167,11 +191,11 @@ double PathMarcher::entryDistance(const Vec3d& x, const Vec3d& dir) const {
     return t;
 }
 
-openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const DirectionalOrPointLight& light,
-                                        const LightCacheSettings& settings) {
+openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const MarchRegion& region,
+                                        const DirectionalOrPointLight& light, const LightCacheSettings& settings) {
     openvdb::FloatGrid::Ptr cache = cacheTopology(receiver, std::max(1, settings.coarsening));
     const openvdb::math::Transform& occluderXf = occluder.grid->transform();
-    fillCache(*cache, [&] { return std::make_unique<PathMarcher>(occluder, light, settings); },
+    fillCache(*cache, [&] { return std::make_unique<PathMarcher>(occluder, region, light, settings); },
               [&](PathMarcher& marcher, const Vec3d& p) { return marcher.densityPath(occluderXf.worldToIndex(p)); });
     return cache;
 }

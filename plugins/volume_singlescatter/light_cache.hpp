@@ -16,8 +16,16 @@
 // the occluder's voxel lengths (cube root of a voxel's volume), which on
 // uniform grids are its index units exactly. Meshes on the way to the light
 // go into a visibility grid on the receiver's cache voxels (1 lit, 0 blocked).
+//
+// The march reads only where the occluder can be non-empty (MarchRegion):
+// towards the light most of a thin-featured volume's path is empty space.
 #include <openvdb/openvdb.h>
+
+#include <memory>
+#include <vector>
+
 #include "core/volume/leaf_sampler.hpp"
+#include "core/volume/visible_blocks.hpp"
 
 #include "core/mesh/mesh_accel.hpp"
 #include "core/volume/volume.hpp"
@@ -33,10 +41,23 @@ struct LightCacheSettings {
     int coarsening;     // cache voxels are this many density voxels wide
 };
 
+// Where a lookup of an occluder's density can reach the cutoff, as boxes of
+// cells in 8^3 blocks (VisibleBlocks::reaching). Samples elsewhere add
+// nothing to D, so the march leaps over them and D is unchanged. Built once
+// per occluder, shared by every thread's marcher.
+class MarchRegion {
+public:
+    MarchRegion(const Volume& occluder, float cutoff);
+    const VisibleBlocks* blocks() const { return blocks_.get(); }  // null: nothing may be skipped
+
+private:
+    std::unique_ptr<VisibleBlocks> blocks_;
+};
+
 // D of `occluder` for a directional light (toLight in world space) or a
 // point light, on the cache voxels of `receiver`.
-openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const DirectionalOrPointLight& light,
-                                        const LightCacheSettings& settings);
+openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const MarchRegion& region,
+                                        const DirectionalOrPointLight& light, const LightCacheSettings& settings);
 
 // Whether each cache voxel of `receiver` sees the light past the meshes.
 openvdb::FloatGrid::Ptr buildVisibilityCache(const Volume& receiver, const MeshAccel& accel,
@@ -46,7 +67,8 @@ openvdb::FloatGrid::Ptr buildVisibilityCache(const Volume& receiver, const MeshA
 // thread, it holds grid accessors.
 class PathMarcher {
 public:
-    PathMarcher(const Volume& occluder, const DirectionalOrPointLight& light, const LightCacheSettings& s);
+    PathMarcher(const Volume& occluder, const MarchRegion& region, const DirectionalOrPointLight& light,
+                const LightCacheSettings& s);
     PathMarcher(const PathMarcher&) = delete;
     // D from x (the occluder's index space) towards the light.
     float densityPath(const Vec3d& x);
@@ -59,6 +81,8 @@ private:
     double voxelLengthsPerIndexUnit(const Vec3d& dir) const;
 
     const Volume& occluder_;
+    const MarchRegion& region_;
+    std::vector<RayInterval> intervals_;
     const DirectionalOrPointLight& light_;
     LightCacheSettings s_;
     openvdb::FloatGrid::ConstAccessor acc_;

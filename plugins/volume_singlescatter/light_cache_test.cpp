@@ -3,7 +3,10 @@
 // the origin (where integer division rounds the other way).
 #include <gtest/gtest.h>
 
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/Morphology.h>
+
+#include <algorithm>
 
 #include <cstdint>
 
@@ -54,7 +57,7 @@ TEST(LightCache, HoldsExactlyTheVoxelsLookupsReachAtEveryCoarsening) {
     light.color = Vec3d(1.0);
     for (const int factor : {1, 2, 3, 4, 5, 6, 7, 8}) {
         SCOPED_TRACE("cache_voxel " + std::to_string(factor));
-        const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, light, {1.0, 0.2, 0.005, 0.1, factor});
+        const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, MarchRegion(volume, 0.005f), light, {1.0, 0.2, 0.005, 0.1, factor});
         const openvdb::MaskTree expected = expectedCacheVoxels(*volume.grid, factor);
         EXPECT_EQ(cache->activeVoxelCount(), expected.activeVoxelCount());
         std::int64_t missing = 0;  // the cache places its voxels by its own origin: found by position
@@ -70,6 +73,46 @@ TEST(LightCache, HoldsExactlyTheVoxelsLookupsReachAtEveryCoarsening) {
         EXPECT_GE(box.min().y(), 0);
         EXPECT_GE(box.min().z(), 0);
     }
+}
+
+// D by its definition, every sample of the march taken (no leaping):
+// midpoints (n + 1/2) step from x towards the light until the index box's exit.
+double marchedEverywhere(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& box, const Vec3d& x, const Vec3d& dir,
+                         double step, double gain, double cutoff) {
+    double tExit = 1e300;
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] > 1e-12) tExit = std::min(tExit, (box.max()[a] + 0.5 - x[a]) / dir[a]);
+        if (dir[a] < -1e-12) tExit = std::min(tExit, (box.min()[a] - 0.5 - x[a]) / dir[a]);
+    }
+    const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
+    double D = 0;
+    for (double n = 0; (n + 0.5) * step < tExit; ++n) {
+        const double t = (n + 0.5) * step, rho = openvdb::tools::BoxSampler::sample(acc, x + dir * t);
+        if (rho >= cutoff) D += rho * step / (1.0 + gain * t);
+    }
+    return D;
+}
+
+// The march leaps over space whose lookups stay below the cutoff
+// (MarchRegion); D must be what marching every sample gives.
+TEST(LightCache, LeapingOverEmptySpaceLeavesEveryPathAsMarchingAllOfIt) {
+    Volume volume;
+    volume.grid = scatteredDensity();
+    computeStatistics(volume);
+    DirectionalOrPointLight light;
+    light.toLight = Vec3d(0.3, 0.8, 0.5).unitSafe();
+    light.color = Vec3d(1.0);
+    const LightCacheSettings settings{0.75, 0.2, 0.3, 0.0, 2};  // cutoff 0.3: the 0.25 sheet is empty space
+    const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, MarchRegion(volume, 0.3f), light, settings);
+    int checked = 0, nonZero = 0;
+    for (auto it = cache->cbeginValueOn(); it; ++it, ++checked) {
+        const Vec3d x = volume.grid->worldToIndex(cache->indexToWorld(it.getCoord()));
+        const double expected = marchedEverywhere(*volume.grid, volume.indexBox(), x, light.toLight, 0.75, 0.2, 0.3);
+        ASSERT_NEAR(*it, expected, 1e-5 * (1.0 + expected)) << "cache voxel " << it.getCoord();
+        nonZero += expected > 0;
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_GT(nonZero, checked / 10);
 }
 
 }  // namespace

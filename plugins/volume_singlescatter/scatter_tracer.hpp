@@ -98,6 +98,7 @@ private:
     const MeshAccel* accel_;
     float eps_;
     bool moving_;  // some volume moves while the shutter is open
+    std::vector<std::unique_ptr<MarchRegion>> marchRegions_;  // [volume], with the cache
     std::vector<openvdb::FloatGrid::Ptr> densityCaches_;     // [light][receiver][occluder]
     std::vector<openvdb::FloatGrid::Ptr> visibilityCaches_;
     VolumeBvh bvh_;  // with two or more volumes  // [light][receiver], with meshes only
