@@ -131,7 +131,8 @@ AxisBits reachingBits(const openvdb::FloatTree::LeafNodeType& leaf, float cutoff
 
 }  // namespace
 
-std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid& grid, float cutoff, std::size_t maxBlocks) {
+std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid& grid, float cutoff, Within within,
+                                                       std::size_t maxBlocks) {
     if (!(grid.background() < cutoff)) return nullptr;
     using Leaf = openvdb::FloatTree::LeafNodeType;
     std::vector<const Leaf*> leaves;
@@ -148,7 +149,7 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid&
     auto tile = grid.tree().cbeginValueAll();
     tile.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
     for (; tile; ++tile)
-        if (*tile >= cutoff) tiles.push_back(tile.getBoundingBox());
+        if (*tile >= cutoff && (within == Within::Anywhere || tile.isValueOn())) tiles.push_back(tile.getBoundingBox());
     openvdb::CoordBBox box;
     for (std::size_t i = 0; i < leaves.size(); ++i) {
         if (bits[i].none()) continue;
@@ -164,6 +165,12 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid&
         return blocks;
     }
     if (!blocks->allocate(box, maxBlocks)) return nullptr;
+    const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
+    const auto active = [&](const openvdb::Coord& origin) {  // a block the march reads
+        if (within == Within::Anywhere) return true;
+        if (const auto* leaf = acc.probeConstLeaf(origin)) return !leaf->isEmpty();
+        return acc.isValueOn(origin);
+    };
     for (std::size_t i = 0; i < leaves.size(); ++i) {
         if (bits[i].none()) continue;
         const AxisBits& b = bits[i];
@@ -178,13 +185,15 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid&
                 if (below[a]) inside = inside && b.lo(a) == 0, l[a] = h[a] = 7;
                 else l[a] = std::max(b.lo(a) - 1, 0), h[a] = b.hi(a);
             }
-            if (inside) blocks->blockAt(o.offsetBy(-8 * below[0], -8 * below[1], -8 * below[2])).add(l[0], l[1], l[2], h[0], h[1], h[2]);
+            const openvdb::Coord at = o.offsetBy(-8 * below[0], -8 * below[1], -8 * below[2]);
+            if (inside && active(at)) blocks->blockAt(at).add(l[0], l[1], l[2], h[0], h[1], h[2]);
         }
     }
     for (const openvdb::CoordBBox& t : tiles)
         for (int x = t.min().x() - 8; x <= t.max().x(); x += 8)
             for (int y = t.min().y() - 8; y <= t.max().y(); y += 8)
-                for (int z = t.min().z() - 8; z <= t.max().z(); z += 8) blocks->blockAt(openvdb::Coord(x, y, z)).add(0, 0, 0, 7, 7, 7);
+                for (int z = t.min().z() - 8; z <= t.max().z(); z += 8)
+                    if (active(openvdb::Coord(x, y, z))) blocks->blockAt(openvdb::Coord(x, y, z)).add(0, 0, 0, 7, 7, 7);
     blocks->measureClearance();
     return blocks;
 }

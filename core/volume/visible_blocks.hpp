@@ -35,7 +35,12 @@ public:
     // just below such a voxel, on the block's low faces, spill into the
     // blocks below). Null as of() is, and where the background reaches the
     // cutoff (nothing can be skipped); an empty array where nothing reaches it.
-    static std::unique_ptr<VisibleBlocks> reaching(const openvdb::FloatGrid& grid, float cutoff,
+    // Within::ActiveBlocks keeps only the blocks of leaves with active voxels
+    // and of active tiles: a march that reads only those (OpenVDB's
+    // intersector's leaves) then takes exactly the samples it would have
+    // and can add something.
+    enum class Within { Anywhere, ActiveBlocks };
+    static std::unique_ptr<VisibleBlocks> reaching(const openvdb::FloatGrid& grid, float cutoff, Within within = Within::Anywhere,
                                                    std::size_t maxBlocks = std::size_t(1) << 22);
 
     // Appends the stretches of `ray` (within [ray.t0, ray.t1]) that cross a

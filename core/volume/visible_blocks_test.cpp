@@ -167,6 +167,36 @@ TEST(VisibleBlocks, ReachingHandsEveryLookupAtTheCutoffToTheMarch) {
     EXPECT_LT(covered, 20 * reaching);  // little besides
 }
 
+// Within::ActiveBlocks keeps to the leaves with active voxels (the ones
+// OpenVDB's intersector marches): a voxel on a leaf's low face spills its
+// cells into the block below only where that block is such a leaf too.
+TEST(VisibleBlocks, ReachingWithinActiveBlocksKeepsToLeavesWithActiveVoxels) {
+    initVdb();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->tree().setValueOn(openvdb::Coord(3, 3, 3), 0.8f);    // block 0
+    grid->tree().setValueOn(openvdb::Coord(8, 3, 3), 0.7f);    // block 8's low face: cell 7 of block 0
+    grid->tree().setValueOn(openvdb::Coord(24, 3, 3), 0.7f);   // block 24's low face: cell 23 of block 16, no leaf
+    grid->tree().setValueOff(openvdb::Coord(40, 3, 3), 0.9f);  // a leaf without active voxels
+    const IndexRay ray = rayThrough(Vec3d(-5.0, 3.5, 3.5), Vec3d(60.0, 3.5, 3.5));
+    const auto coversX = [&](VisibleBlocks::Within within, double x) {
+        const auto blocks = VisibleBlocks::reaching(*grid, 0.5f, within);
+        std::vector<RayInterval> out;
+        blocks->intervals(ray, 1.0, out);
+        const double t = x + 5.0;
+        for (const RayInterval& in : out)
+            if (t >= in.lo && t <= in.hi) return true;
+        return false;
+    };
+    for (const auto within : {VisibleBlocks::Within::Anywhere, VisibleBlocks::Within::ActiveBlocks}) {
+        for (const double x : {2.5, 3.5, 7.5, 8.5, 24.5}) EXPECT_TRUE(coversX(within, x)) << x;
+        for (const double x : {-2.0, 12.0, 30.0, 50.0}) EXPECT_FALSE(coversX(within, x)) << x;
+    }
+    for (const double x : {23.5, 39.5, 40.5}) {
+        EXPECT_TRUE(coversX(VisibleBlocks::Within::Anywhere, x)) << x;
+        EXPECT_FALSE(coversX(VisibleBlocks::Within::ActiveBlocks, x)) << x;
+    }
+}
+
 TEST(VisibleBlocks, ReachingNothingSkipsEverythingAndABackgroundAtTheCutoffSkipsNothing) {
     initVdb();
     auto low = openvdb::FloatGrid::create(0.0f);
@@ -181,7 +211,7 @@ TEST(VisibleBlocks, ReachingNothingSkipsEverythingAndABackgroundAtTheCutoffSkips
     auto wide = openvdb::FloatGrid::create(0.0f);
     wide->tree().setValueOn(openvdb::Coord(0, 0, 0), 1.0f);
     wide->tree().setValueOn(openvdb::Coord(800, 800, 800), 1.0f);
-    EXPECT_FALSE(VisibleBlocks::reaching(*wide, 0.5f, 1000000));  // too many blocks
+    EXPECT_FALSE(VisibleBlocks::reaching(*wide, 0.5f, VisibleBlocks::Within::Anywhere, 1000000));  // too many blocks
 }
 
 }  // namespace

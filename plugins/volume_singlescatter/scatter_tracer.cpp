@@ -215,6 +215,10 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
         const bool unit = v.uniform && v.voxelLength == unitLength;  // index units are march units exactly
         c.perU = unit ? 1.0 : unitLength * v.indexSpeed(ray.dir) / speed;
         c.depthScale = unit ? 1.0 : unitLength / v.voxelLength;
+        if (v.reaching) {
+            v.reaching->intervals(IndexRay{c.ray.eye(), c.ray.dir(), c.ray.t0(), c.ray.t1()}, c.perU, row.spans);
+            continue;
+        }
         row.volumes[c.volume].primary.hits(row.hits);
         for (const auto& h : row.hits) row.spans.push_back({h.t0 / c.perU, h.t1 / c.perU});
     }

@@ -35,6 +35,8 @@ std::vector<ScatterVolume> scatterVolumes(const Scene& scene, const ScatterParam
         v.occupancy = shiftedOccupancy(*occupancyIndexGrid(vol), shift);
         v.shift = shift.asVec3d();
         v.intersector = std::make_shared<const VdbIntersector>(*v.occupancy);
+        if (!vol.emission && !vol.motion)
+            v.reaching = VisibleBlocks::reaching(*vol.grid, float(params.cutoff), VisibleBlocks::Within::ActiveBlocks);
         v.phase = params.phase, v.g = params.g;
         if (vol.medium.fromScene && !paramsWin) {
             setCoefficients(v, vol.medium.absorb, vol.medium.scatter);

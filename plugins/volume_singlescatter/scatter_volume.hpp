@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/scene/scene.hpp"
+#include "core/volume/visible_blocks.hpp"
 #include "plugins/volume_singlescatter/scatter_params.hpp"
 
 namespace weft {
@@ -25,6 +26,10 @@ struct ScatterVolume {
     openvdb::MaskGrid::ConstPtr occupancy;        // shifted by `shift`; the intersector points into it
     Vec3d shift{0.0};                             // index point + shift = occupancy point
     std::shared_ptr<const VdbIntersector> intersector;
+    // Camera rays march only the cells of the intersector's leaves where a
+    // lookup can reach the cutoff (the samples that can add something); null
+    // with emission or motion, where the intersector's spans are marched.
+    std::shared_ptr<const VisibleBlocks> reaching;
     Vec3d sigmaT, albedo;                         // per voxel length per unit density
     Phase phase = Phase::Isotropic;
     double g = 0;
