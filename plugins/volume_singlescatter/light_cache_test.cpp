@@ -48,13 +48,23 @@ openvdb::MaskTree expectedCacheVoxels(const openvdb::FloatGrid& density, int fac
     return mask;
 }
 
-TEST(LightCache, HoldsExactlyTheVoxelsLookupsReachAtEveryCoarsening) {
+Volume scatteredVolume() {
     Volume volume;
     volume.grid = scatteredDensity();
     computeStatistics(volume);
+    return volume;
+}
+
+DirectionalOrPointLight slantedLight() {
     DirectionalOrPointLight light;
     light.toLight = Vec3d(0.3, 0.8, 0.5).unitSafe();
     light.color = Vec3d(1.0);
+    return light;
+}
+
+TEST(LightCache, HoldsExactlyTheVoxelsLookupsReachAtEveryCoarsening) {
+    const Volume volume = scatteredVolume();
+    const DirectionalOrPointLight light = slantedLight();
     for (const int factor : {1, 2, 3, 4, 5, 6, 7, 8}) {
         SCOPED_TRACE("cache_voxel " + std::to_string(factor));
         const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, MarchRegion(volume, 0.005f), light, {1.0, 0.2, 0.005, 0.1, factor});
@@ -96,12 +106,8 @@ double marchedEverywhere(const openvdb::FloatGrid& grid, const openvdb::CoordBBo
 // The march leaps over space whose lookups stay below the cutoff
 // (MarchRegion); D must be what marching every sample gives.
 TEST(LightCache, LeapingOverEmptySpaceLeavesEveryPathAsMarchingAllOfIt) {
-    Volume volume;
-    volume.grid = scatteredDensity();
-    computeStatistics(volume);
-    DirectionalOrPointLight light;
-    light.toLight = Vec3d(0.3, 0.8, 0.5).unitSafe();
-    light.color = Vec3d(1.0);
+    const Volume volume = scatteredVolume();
+    const DirectionalOrPointLight light = slantedLight();
     const LightCacheSettings settings{0.75, 0.2, 0.3, 0.0, 2};  // cutoff 0.3: the 0.25 sheet is empty space
     const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, MarchRegion(volume, 0.3f), light, settings);
     int checked = 0, nonZero = 0;
