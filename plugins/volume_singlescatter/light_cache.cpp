@@ -1,11 +1,15 @@
 #include "plugins/volume_singlescatter/light_cache.hpp"
 
 #include <openvdb/tree/LeafManager.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <vector>
 
 #include "core/volume/leaf_reach.hpp"
 #include "core/volume/octant_shift.hpp"
@@ -57,8 +61,17 @@ openvdb::MaskTree coarseVoxels(const openvdb::FloatTree& density, const openvdb:
         addShiftedTopology(density, -origin, coarse);
         return coarse;
     }
-    openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(coarse);
-    for (auto leaf = density.cbeginLeaf(); leaf; ++leaf) markLeafCoarse(*leaf, origin, factor, acc);
+    // Each thread marks its leaves in a tree of its own; the trees' union is
+    // the same whatever the split.
+    std::vector<const openvdb::FloatTree::LeafNodeType*> leaves;
+    leaves.reserve(density.leafCount());
+    for (auto leaf = density.cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
+    tbb::enumerable_thread_specific<openvdb::MaskTree> marked(openvdb::MaskTree(false));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        openvdb::tree::ValueAccessor<openvdb::MaskTree> acc(marked.local());
+        for (std::size_t i = r.begin(); i != r.end(); ++i) markLeafCoarse(*leaves[i], origin, factor, acc);
+    });
+    for (const openvdb::MaskTree& part : marked) coarse.topologyUnion(part);
     auto tile = density.cbeginValueOn();
     tile.setMaxDepth(tile.getLeafDepth() - 1);  // tiles only: the leaves' voxels are marked above
     for (; tile; ++tile) {
