@@ -45,28 +45,13 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::of(const openvdb::FloatGrid& cells
     const openvdb::CoordBBox box = cells.evalActiveVoxelBoundingBox();
     if (box.empty()) return nullptr;
     auto blocks = std::make_unique<VisibleBlocks>();
-    blocks->origin_ = openvdb::Coord(box.min().x() & ~7, box.min().y() & ~7, box.min().z() & ~7);
-    double count = 1;
-    for (int a = 0; a < 3; ++a) {
-        blocks->dims_[a] = blockOf(box.max()[a]) - blockOf(box.min()[a]) + 1;
-        count *= blocks->dims_[a];
-    }
-    if (count > double(maxBlocks)) return nullptr;
-    blocks->boxes_.resize(std::size_t(count));
-    const auto blockAt = [&](const openvdb::Coord& voxel) -> Box& {
-        const openvdb::Coord b = voxel - blocks->origin_;
-        return blocks->boxes_[blocks->indexOf(blockOf(b.x()), blockOf(b.y()), blockOf(b.z()))];
-    };
+    if (!blocks->allocate(box, maxBlocks)) return nullptr;
     for (auto leaf = cells.tree().cbeginLeaf(); leaf; ++leaf) {
         openvdb::CoordBBox on;  // empty; the leaf adds its active voxels' box (visitVoxels: tight, not the node's)
         leaf->evalActiveBoundingBox(on, true);
-        if (!on.empty()) {
-            Box& b = blockAt(leaf->origin());
-            for (int a = 0; a < 3; ++a) {
-                b.lo[a] = std::uint8_t(on.min()[a] - leaf->origin()[a]);
-                b.hi[a] = std::uint8_t(on.max()[a] - leaf->origin()[a]);
-            }
-        }
+        if (on.empty()) continue;
+        const openvdb::Coord lo = on.min() - leaf->origin(), hi = on.max() - leaf->origin();
+        blocks->blockAt(leaf->origin()).add(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
     }
     auto tiles = cells.tree().cbeginValueOn();  // active tiles: whole blocks visible
     tiles.setMaxDepth(openvdb::FloatTree::ValueOnCIter::LEAF_DEPTH - 1);
@@ -75,10 +60,7 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::of(const openvdb::FloatGrid& cells
         tiles.getBoundingBox(tile);
         for (int x = tile.min().x(); x <= tile.max().x(); x += 8)
             for (int y = tile.min().y(); y <= tile.max().y(); y += 8)
-                for (int z = tile.min().z(); z <= tile.max().z(); z += 8) {
-                    Box& b = blockAt(openvdb::Coord(x, y, z));
-                    for (int a = 0; a < 3; ++a) b.lo[a] = 0, b.hi[a] = 7;
-                }
+                for (int z = tile.min().z(); z <= tile.max().z(); z += 8) blocks->blockAt(openvdb::Coord(x, y, z)).add(0, 0, 0, 7, 7, 7);
     }
     blocks->measureClearance();
     return blocks;
@@ -190,11 +172,7 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid&
     }
     for (const openvdb::CoordBBox& t : tiles) box.expand(openvdb::CoordBBox(t.min().offsetBy(-1), t.max()));
     auto blocks = std::make_unique<VisibleBlocks>();
-    if (box.empty()) {  // nothing reaches: every ray's intervals are empty
-        blocks->origin_ = openvdb::Coord(0);
-        blocks->clearance_.clear();
-        return blocks;
-    }
+    if (box.empty()) return blocks;  // nothing reaches: no blocks, every ray's intervals are empty
     if (!blocks->allocate(box, maxBlocks)) return nullptr;
     const openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
     const auto active = [&](const openvdb::Coord& origin) {  // a block the march reads

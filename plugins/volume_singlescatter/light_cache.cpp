@@ -120,11 +120,9 @@ void fillCache(openvdb::FloatGrid& cache, const Make& makeState, const Value& va
 
 }  // namespace
 
-MarchRegion::MarchRegion(const Volume& occluder, float cutoff) : blocks_(VisibleBlocks::reaching(*occluder.grid, cutoff)) {}
-
-PathMarcher::PathMarcher(const Volume& occluder, const MarchRegion& region, const DirectionalOrPointLight& light,
+PathMarcher::PathMarcher(const Volume& occluder, const VisibleBlocks* reaching, const DirectionalOrPointLight& light,
                          const LightCacheSettings& s)
-    : occluder_(occluder), region_(region), light_(light), s_(s), acc_(occluder.grid->getConstAccessor()),
+    : occluder_(occluder), reaching_(reaching), light_(light), s_(s), acc_(occluder.grid->getConstAccessor()),
       sampler_(acc_, occluder.grid->transform()), box_(occluder.indexBox()), voxelLength_(occluder.voxelLength()),
       uniform_(occluder.grid->transform().hasUniformScale()) {
     const auto& xf = occluder.grid->transform();
@@ -153,30 +151,19 @@ float PathMarcher::densityPath(const Vec3d& x) {
     // the entry; samples before it read nothing, so skipping them changes nothing.
     const double tEnter = entryDistance(x, dir);
     if (!(tEnter < tMax)) return 0.0f;
-    double D = 0;
-    // One sample at t = (n + 1/2) step; false once the path is opaque.
-    const auto add = [&](double n) {
-        const double t = (n + 0.5) * step;
-        const Vec3d p = x + dir * t;
-        const double rho = sampler_.isSample(p);
-        if (std::isfinite(rho) && rho > 0 && rho >= s_.cutoff) D += rho * s_.step / (1.0 + s_.gain * (t * k));
-        return D <= stopDepth_;
-    };
-    const auto firstAtOrAfter = [&](double t) { return std::max(0.0, std::ceil(t / step - 0.5)); };
-    if (!region_.blocks()) {
-        for (double n = firstAtOrAfter(tEnter); (n + 0.5) * step < tMax; ++n)
-            if (!add(n)) break;
-        return float(D);
-    }
-    // Only where the path crosses the boxes of cells that reach the cutoff;
-    // the intervals are ordered and disjoint, nNext keeps it so at their ends.
+    // Samples at t = (n + 1/2) step, only where the path crosses the boxes
+    // of cells that reach the cutoff (without them: all of [tEnter, tMax)).
+    // The intervals are ordered and disjoint; nNext keeps it so at their ends.
     intervals_.clear();
-    region_.blocks()->intervals(IndexRay{x, dir, tEnter, tMax}, 1.0, intervals_);
-    double nNext = 0;
+    if (reaching_) reaching_->intervals(IndexRay{x, dir, tEnter, tMax}, 1.0, intervals_);
+    else intervals_.push_back({tEnter, tMax});
+    double D = 0, nNext = 0;
     for (const RayInterval& in : intervals_) {
-        for (double n = std::max(nNext, firstAtOrAfter(in.lo)); (n + 0.5) * step <= in.hi && (n + 0.5) * step < tMax; ++n) {
+        for (double n = std::max(nNext, std::ceil(in.lo / step - 0.5)); (n + 0.5) * step <= in.hi && (n + 0.5) * step < tMax; ++n) {
             nNext = n + 1;
-            if (!add(n)) return float(D);
+            const double t = (n + 0.5) * step, rho = sampler_.isSample(x + dir * t);
+            if (std::isfinite(rho) && rho > 0 && rho >= s_.cutoff) D += rho * s_.step / (1.0 + s_.gain * (t * k));
+            if (D > stopDepth_) return float(D);
         }
     }
     return float(D);
@@ -204,11 +191,11 @@ double PathMarcher::entryDistance(const Vec3d& x, const Vec3d& dir) const {
     return t;
 }
 
-openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const MarchRegion& region,
+openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const VisibleBlocks* occluderReaching,
                                         const DirectionalOrPointLight& light, const LightCacheSettings& settings) {
     openvdb::FloatGrid::Ptr cache = cacheTopology(receiver, std::max(1, settings.coarsening));
     const openvdb::math::Transform& occluderXf = occluder.grid->transform();
-    fillCache(*cache, [&] { return std::make_unique<PathMarcher>(occluder, region, light, settings); },
+    fillCache(*cache, [&] { return std::make_unique<PathMarcher>(occluder, occluderReaching, light, settings); },
               [&](PathMarcher& marcher, const Vec3d& p) { return marcher.densityPath(occluderXf.worldToIndex(p)); });
     return cache;
 }

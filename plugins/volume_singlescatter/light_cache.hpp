@@ -17,11 +17,12 @@
 // uniform grids are its index units exactly. Meshes on the way to the light
 // go into a visibility grid on the receiver's cache voxels (1 lit, 0 blocked).
 //
-// The march reads only where the occluder can be non-empty (MarchRegion):
-// towards the light most of a thin-featured volume's path is empty space.
+// The march samples only where a lookup of the occluder can reach the
+// cutoff (its VisibleBlocks::reaching; null: everywhere), which leaves D
+// unchanged: towards the light most of a thin-featured volume's path is
+// empty space.
 #include <openvdb/openvdb.h>
 
-#include <memory>
 #include <vector>
 
 #include "core/volume/leaf_sampler.hpp"
@@ -41,22 +42,9 @@ struct LightCacheSettings {
     int coarsening;     // cache voxels are this many density voxels wide
 };
 
-// Where a lookup of an occluder's density can reach the cutoff, as boxes of
-// cells in 8^3 blocks (VisibleBlocks::reaching). Samples elsewhere add
-// nothing to D, so the march leaps over them and D is unchanged. Built once
-// per occluder, shared by every thread's marcher.
-class MarchRegion {
-public:
-    MarchRegion(const Volume& occluder, float cutoff);
-    const VisibleBlocks* blocks() const { return blocks_.get(); }  // null: nothing may be skipped
-
-private:
-    std::unique_ptr<VisibleBlocks> blocks_;
-};
-
 // D of `occluder` for a directional light (toLight in world space) or a
 // point light, on the cache voxels of `receiver`.
-openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const MarchRegion& region,
+openvdb::FloatGrid::Ptr buildLightCache(const Volume& receiver, const Volume& occluder, const VisibleBlocks* occluderReaching,
                                         const DirectionalOrPointLight& light, const LightCacheSettings& settings);
 
 // Whether each cache voxel of `receiver` sees the light past the meshes.
@@ -67,7 +55,7 @@ openvdb::FloatGrid::Ptr buildVisibilityCache(const Volume& receiver, const MeshA
 // thread, it holds grid accessors.
 class PathMarcher {
 public:
-    PathMarcher(const Volume& occluder, const MarchRegion& region, const DirectionalOrPointLight& light,
+    PathMarcher(const Volume& occluder, const VisibleBlocks* reaching, const DirectionalOrPointLight& light,
                 const LightCacheSettings& s);
     PathMarcher(const PathMarcher&) = delete;
     // D from x (the occluder's index space) towards the light.
@@ -81,7 +69,7 @@ private:
     double voxelLengthsPerIndexUnit(const Vec3d& dir) const;
 
     const Volume& occluder_;
-    const MarchRegion& region_;
+    const VisibleBlocks* reaching_;  // the occluder's; null: sample everywhere
     std::vector<RayInterval> intervals_;
     const DirectionalOrPointLight& light_;
     LightCacheSettings s_;

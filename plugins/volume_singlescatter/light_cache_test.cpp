@@ -67,7 +67,7 @@ TEST(LightCache, HoldsExactlyTheVoxelsLookupsReachAtEveryCoarsening) {
     const DirectionalOrPointLight light = slantedLight();
     for (const int factor : {1, 2, 3, 4, 5, 6, 7, 8}) {
         SCOPED_TRACE("cache_voxel " + std::to_string(factor));
-        const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, MarchRegion(volume, 0.005f), light, {1.0, 0.2, 0.005, 0.1, factor});
+        const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, nullptr, light, {1.0, 0.2, 0.005, 0.1, factor});
         const openvdb::MaskTree expected = expectedCacheVoxels(*volume.grid, factor);
         EXPECT_EQ(cache->activeVoxelCount(), expected.activeVoxelCount());
         std::int64_t missing = 0;  // the cache places its voxels by its own origin: found by position
@@ -104,12 +104,14 @@ double marchedEverywhere(const openvdb::FloatGrid& grid, const openvdb::CoordBBo
 }
 
 // The march leaps over space whose lookups stay below the cutoff
-// (MarchRegion); D must be what marching every sample gives.
+// (VisibleBlocks::reaching); D must be what marching every sample gives.
 TEST(LightCache, LeapingOverEmptySpaceLeavesEveryPathAsMarchingAllOfIt) {
     const Volume volume = scatteredVolume();
     const DirectionalOrPointLight light = slantedLight();
     const LightCacheSettings settings{0.75, 0.2, 0.3, 0.0, 2};  // cutoff 0.3: the 0.25 sheet is empty space
-    const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, MarchRegion(volume, 0.3f), light, settings);
+    const auto reaching = VisibleBlocks::reaching(*volume.grid, 0.3f);
+    ASSERT_TRUE(reaching);
+    const openvdb::FloatGrid::Ptr cache = buildLightCache(volume, volume, reaching.get(), light, settings);
     int checked = 0, nonZero = 0;
     for (auto it = cache->cbeginValueOn(); it; ++it, ++checked) {
         const Vec3d x = volume.grid->worldToIndex(cache->indexToWorld(it.getCoord()));

@@ -152,13 +152,13 @@ static LightCacheSettings cacheSettings(const ScatterParams& p, const ScatterVol
 void ScatterTracer::buildCaches(RenderContext& ctx) {
     ScopedTimer timer(ctx.timings, "light_cache");
     std::int64_t voxels = 0;
-    for (const ScatterVolume& v : volumes_) marchRegions_.push_back(std::make_unique<MarchRegion>(*v.volume, float(params_.cutoff)));
+    for (const ScatterVolume& v : volumes_) cacheReaching_.push_back(VisibleBlocks::reaching(*v.volume->grid, float(params_.cutoff)));
     for (const DirectionalOrPointLight& light : params_.lights)
         for (const ScatterVolume& receiver : volumes_) {
             for (std::size_t o = 0; o < volumes_.size(); ++o) {
                 const ScatterVolume& occluder = volumes_[o];
                 densityCaches_.push_back(
-                    buildLightCache(*receiver.volume, *occluder.volume, *marchRegions_[o], light, cacheSettings(params_, occluder)));
+                    buildLightCache(*receiver.volume, *occluder.volume, cacheReaching_[o].get(), light, cacheSettings(params_, occluder)));
                 voxels += std::int64_t(densityCaches_.back()->activeVoxelCount());
             }
             if (accel_) visibilityCaches_.push_back(buildVisibilityCache(*receiver.volume, *accel_, light, params_.cacheCoarsening));
@@ -176,7 +176,7 @@ std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> ScatterTracer::ro
     if (accel_ && params_.estimator == ShadowEstimator::Cached)
         for (const DirectionalOrPointLight& light : params_.lights)
             for (std::size_t o = 0; o < volumes_.size(); ++o)
-                row->marchers.emplace_back(*volumes_[o].volume, *marchRegions_[o], light, cacheSettings(params_, volumes_[o]));
+                row->marchers.emplace_back(*volumes_[o].volume, cacheReaching_[o].get(), light, cacheSettings(params_, volumes_[o]));
     return row;
 }
 

@@ -98,7 +98,9 @@ private:
     const MeshAccel* accel_;
     float eps_;
     bool moving_;  // some volume moves while the shutter is open
-    std::vector<std::unique_ptr<MarchRegion>> marchRegions_;  // [volume], with the cache
+    // [volume], with the cache: where the cache's march samples (every leaf's
+    // values count, not only the active leaves' that camera rays read).
+    std::vector<std::unique_ptr<VisibleBlocks>> cacheReaching_;
     std::vector<openvdb::FloatGrid::Ptr> densityCaches_;     // [light][receiver][occluder]
     std::vector<openvdb::FloatGrid::Ptr> visibilityCaches_;
     VolumeBvh bvh_;  // with two or more volumes  // [light][receiver], with meshes only
