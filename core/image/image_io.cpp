@@ -9,6 +9,7 @@
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
 #include "core/image/exr_preflight.hpp"
+#include "core/image/exr_reader.hpp"
 #include "core/image/exr_writer.hpp"
 #include "core/image/image_codec.hpp"
 
@@ -52,11 +53,15 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
 
 Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window) {
     requireRegularFile(path, "image");
-    if (lowerExtension(path) == ".exr") preflightExr(path);
     ImageFileSpec spec;
     std::vector<float> pixels;
-    const std::string error = imageCodec().read(path, spec, pixels);
-    if (!error.empty()) throw Error("image '" + path + "': " + error);
+    const bool exr = lowerExtension(path) == ".exr";
+    if (exr) preflightExr(path);
+    if (!exr || readExrFile(path, spec, pixels) == ExrRead::NeedsCodec) {
+        spec = {}, pixels.clear();
+        const std::string error = imageCodec().read(path, spec, pixels);
+        if (!error.empty()) throw Error("image '" + path + "': " + error);
+    }
     Image image(spec.width, spec.height, spec.channels);
     image.data().assign(pixels.begin(), pixels.end());
     if (window) *window = ImageWindow{spec.x, spec.y, spec.fullWidth, spec.fullHeight};
