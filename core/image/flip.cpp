@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/base/error.hpp"
@@ -98,18 +100,24 @@ double remapColorError(double distance) {
     return std::clamp(r, 0.0, 1.0);
 }
 
-// 1-D correlation along a row, clamped to the edge; the interior needs no clamping.
+// 1-D correlation along a row, clamped to the edge. The interior adds one
+// tap at a time over the whole run of pixels (contiguous, so it
+// vectorises), in the same tap order as a per-pixel sum; the ends clamp.
 void correlateRow(const float* row, int w, const std::vector<float>& k, float* out) {
     const int r = static_cast<int>(k.size() / 2);
-    for (int x = 0; x < w; ++x) {
+    const int begin = std::min(r, w), end = std::max(begin, w - r);
+    const auto clamped = [&](int x) {
         float s = 0;
-        if (x >= r && x + r < w) {
-            const float* src = row + (x - r);
-            for (std::size_t j = 0; j < k.size(); ++j) s += k[j] * src[j];
-        } else {
-            for (int j = -r; j <= r; ++j) s += k[j + r] * row[std::clamp(x + j, 0, w - 1)];
-        }
+        for (int j = -r; j <= r; ++j) s += k[j + r] * row[std::clamp(x + j, 0, w - 1)];
         out[x] = s;
+    };
+    for (int x = 0; x < begin; ++x) clamped(x);
+    for (int x = end; x < w; ++x) clamped(x);
+    std::fill(out + begin, out + end, 0.0f);
+    for (std::size_t j = 0; j < k.size(); ++j) {
+        const float kj = k[j];
+        const float* src = row + j - r;
+        for (int x = begin; x < end; ++x) out[x] += kj * src[x];
     }
 }
 
@@ -136,9 +144,18 @@ Plane convolve(const Plane& p, const Kernel& kx, const Kernel& ky) {
     return convolve1d(convolve1d(p, kx, true), ky, false);
 }
 
+// fn(i) for every pixel index, in parallel; each i is written by one call,
+// so the result does not depend on the thread count.
+template <class Fn>
+void forPixels(std::size_t n, Fn&& fn) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) fn(i);
+    });
+}
+
 // out += w * p
 void addScaled(Plane& out, const Plane& p, double w) {
-    for (std::size_t i = 0; i < out.v.size(); ++i) out.v[i] += static_cast<float>(w * p.v[i]);
+    forPixels(out.v.size(), [&](std::size_t i) { out.v[i] += static_cast<float>(w * p.v[i]); });
 }
 
 // One channel's contrast sensitivity as a sum of two Gaussians in visual
@@ -182,26 +199,25 @@ std::array<Plane, 3> toYcxcz(const Image& img) {
     const int ch[3] = {img.channelIndex("R"), img.channelIndex("G"), img.channelIndex("B")};
     const Plane empty(img.width(), img.height());
     std::array<Plane, 3> out{empty, empty, empty};
-    for (int y = 0; y < img.height(); ++y)
-        for (int x = 0; x < img.width(); ++x) {
-            Vec3 rgb;
-            for (int i = 0; i < 3; ++i) rgb[i] = displayValue(img.at(x, y, ch[i]));
-            const Vec3 c = relXyzToYcxcz(rgbToRelXyz(rgb));
-            for (int i = 0; i < 3; ++i) out[i].at(x, y) = static_cast<float>(c[i]);
-        }
+    const int w = img.width();
+    forPixels(empty.v.size(), [&](std::size_t p) {
+        const int x = static_cast<int>(p % w), y = static_cast<int>(p / w);
+        Vec3 rgb;
+        for (int i = 0; i < 3; ++i) rgb[i] = displayValue(img.at(x, y, ch[i]));
+        const Vec3 c = relXyzToYcxcz(rgbToRelXyz(rgb));
+        for (int i = 0; i < 3; ++i) out[i].v[p] = static_cast<float>(c[i]);
+    });
     return out;
 }
 
-// Per pixel colour error of two CSF-filtered YCxCz images.
-Plane colorError(const std::array<Plane, 3>& t, const std::array<Plane, 3>& r) {
-    Plane out(t[0].w, t[0].h);
-    auto lab = [](const std::array<Plane, 3>& p, std::size_t i) {
+// A CSF-filtered YCxCz image as Hunt-adjusted CIELAB, per pixel.
+std::vector<Vec3> toHuntLab(const std::array<Plane, 3>& p) {
+    std::vector<Vec3> out(p[0].v.size());
+    forPixels(out.size(), [&](std::size_t i) {
         Vec3 rgb = relXyzToRgb(ycxczToRelXyz({p[0].v[i], p[1].v[i], p[2].v[i]}));
         for (double& c : rgb) c = std::clamp(c, 0.0, 1.0);
-        return huntLab(rgb);
-    };
-    for (std::size_t i = 0; i < out.v.size(); ++i)
-        out.v[i] = static_cast<float>(remapColorError(hyab(lab(t, i), lab(r, i))));
+        out[i] = huntLab(rgb);
+    });
     return out;
 }
 
@@ -237,7 +253,7 @@ FeatureKernels featureKernels(double ppd) {
 // |(Gx * y, Gy * y)| per pixel for a derivative kernel d (Gaussian across it).
 Plane featureMagnitude(const Plane& y, const Kernel& d, const Kernel& g) {
     Plane fx = convolve(y, d, g), fy = convolve(y, g, d);
-    for (std::size_t i = 0; i < fx.v.size(); ++i) fx.v[i] = std::hypot(fx.v[i], fy.v[i]);
+    forPixels(fx.v.size(), [&](std::size_t i) { fx.v[i] = std::hypot(fx.v[i], fy.v[i]); });
     return fx;
 }
 
@@ -248,51 +264,74 @@ Plane achromatic(const Plane& ycxczY) {
     return out;
 }
 
-// dEf = (max(|edge difference|, |point difference|) / sqrt 2)^q_f.
-Plane featureError(const Plane& testY, const Plane& refY, double ppd) {
-    const FeatureKernels k = featureKernels(ppd);
-    const Plane et = featureMagnitude(testY, k.edge, k.gauss), er = featureMagnitude(refY, k.edge, k.gauss);
-    const Plane pt = featureMagnitude(testY, k.point, k.gauss), pr = featureMagnitude(refY, k.point, k.gauss);
-    Plane out(testY.w, testY.h);
-    for (std::size_t i = 0; i < out.v.size(); ++i) {
-        const double d = std::max(std::abs(et.v[i] - er.v[i]), std::abs(pt.v[i] - pr.v[i])) / std::numbers::sqrt2;
-        out.v[i] = static_cast<float>(std::pow(std::min(d, 1.0), kQf));
-    }
-    return out;
-}
-
 std::string sizeText(const Image& img) { return std::to_string(img.width()) + "x" + std::to_string(img.height()); }
 
-void checkInputs(const Image& test, const Image& reference, double ppd) {
-    if (test.width() != reference.width() || test.height() != reference.height())
-        throw Error("FLIP: images differ in size: " + sizeText(test) + " vs " + sizeText(reference));
-    for (const Image* img : {&test, &reference})
-        for (const char* c : {"R", "G", "B"})
-            if (img->channelIndex(c) < 0)
-                throw Error(std::string("FLIP: the ") + (img == &test ? "test" : "reference") + " image has no " + c +
-                            " channel");
+void checkInputs(const Image& img, double ppd, const char* role) {
+    for (const char* c : {"R", "G", "B"})
+        if (img.channelIndex(c) < 0) throw Error(std::string("FLIP: the ") + role + " image has no " + c + " channel");
     if (!(ppd > 0) || !std::isfinite(ppd))
         throw Error("FLIP: pixels per degree must be a positive number, not " + std::to_string(ppd));
 }
 
+// What the comparison needs of one image: its CSF-filtered colour as
+// CIELAB, and the edge and point magnitudes of its achromatic channel.
+struct FlipSide {
+    std::vector<Vec3> lab;
+    Plane edges, points;
+};
+
+FlipSide prepareSide(const Image& img, double ppd) {
+    const std::array<Plane, 3> c = toYcxcz(img);
+    const std::array<Plane, 3> filtered{csfFilter(c[0], kCsf[0], ppd), csfFilter(c[1], kCsf[1], ppd), csfFilter(c[2], kCsf[2], ppd)};
+    const FeatureKernels k = featureKernels(ppd);
+    const Plane y = achromatic(c[0]);
+    return {toHuntLab(filtered), featureMagnitude(y, k.edge, k.gauss), featureMagnitude(y, k.point, k.gauss)};
+}
+
 }  // namespace
 
-FlipResult flipError(const Image& test, const Image& reference, double pixelsPerDegree) {
-    checkInputs(test, reference, pixelsPerDegree);
-    const std::array<Plane, 3> t = toYcxcz(test), r = toYcxcz(reference);
-    const auto filtered = [&](const std::array<Plane, 3>& p) {
-        return std::array<Plane, 3>{csfFilter(p[0], kCsf[0], pixelsPerDegree), csfFilter(p[1], kCsf[1], pixelsPerDegree),
-                                    csfFilter(p[2], kCsf[2], pixelsPerDegree)};
-    };
-    const Plane ec = colorError(filtered(t), filtered(r)), ef = featureError(achromatic(t[0]), achromatic(r[0]), pixelsPerDegree);
-    FlipResult result{0, Image(test.width(), test.height(), {"FLIP"})};
+struct FlipReference::Side : FlipSide {};
+
+FlipReference::FlipReference(const Image& reference, double pixelsPerDegree)
+    : width_(reference.width()), height_(reference.height()), ppd_(pixelsPerDegree) {
+    checkInputs(reference, pixelsPerDegree, "reference");
+    side_ = std::make_unique<const Side>(Side{prepareSide(reference, pixelsPerDegree)});
+}
+
+FlipReference::~FlipReference() = default;
+
+// dE = dEc^(1 - dEf) per pixel, dEc the remapped HyAB distance, dEf =
+// (max(|edge difference|, |point difference|) / sqrt 2)^q_f. The mean sums
+// each row, then the rows in order: the same on any thread count.
+FlipResult FlipReference::compare(const Image& test) const {
+    if (test.width() != width_ || test.height() != height_)
+        throw Error("FLIP: images differ in size: " + sizeText(test) + " vs " + std::to_string(width_) + "x" + std::to_string(height_));
+    checkInputs(test, ppd_, "test");
+    const FlipSide t = prepareSide(test, ppd_);
+    const FlipSide& r = *side_;
+    FlipResult result{0, Image(width_, height_, {"FLIP"})};
+    float* map = result.errorMap.data().data();
+    std::vector<double> rowSums(height_, 0.0);
+    tbb::parallel_for(0, height_, [&](int y) {
+        for (std::size_t i = std::size_t(y) * width_, end = i + width_; i < end; ++i) {
+            const double ec = static_cast<float>(remapColorError(hyab(t.lab[i], r.lab[i])));
+            const double d = std::max(std::abs(t.edges.v[i] - r.edges.v[i]), std::abs(t.points.v[i] - r.points.v[i])) / std::numbers::sqrt2;
+            const double ef = static_cast<float>(std::pow(std::min(d, 1.0), kQf));
+            map[i] = static_cast<float>(std::pow(ec, 1.0 - ef));
+            rowSums[y] += map[i];
+        }
+    });
     double total = 0;
-    for (std::size_t i = 0; i < ec.v.size(); ++i) {
-        result.errorMap.data()[i] = static_cast<float>(std::pow(double(ec.v[i]), 1.0 - ef.v[i]));
-        total += result.errorMap.data()[i];
-    }
-    result.mean = ec.v.empty() ? 0 : total / static_cast<double>(ec.v.size());
+    for (double s : rowSums) total += s;
+    result.mean = width_ * height_ == 0 ? 0 : total / (double(width_) * height_);
     return result;
+}
+
+FlipResult flipError(const Image& test, const Image& reference, double pixelsPerDegree) {
+    if (test.width() != reference.width() || test.height() != reference.height())
+        throw Error("FLIP: images differ in size: " + sizeText(test) + " vs " + sizeText(reference));
+    checkInputs(test, pixelsPerDegree, "test");
+    return FlipReference(reference, pixelsPerDegree).compare(test);
 }
 
 }  // namespace weft

@@ -17,6 +17,8 @@
 //
 // LDR-FLIP is symmetric: every step treats the images alike and compares
 // them with |.| or a distance, so swapping them gives the same map.
+#include <memory>
+
 #include "core/image/image.hpp"
 
 namespace weft {
@@ -30,5 +32,21 @@ struct FlipResult {
 // pixelsPerDegree is not a positive finite number. The default, 67, is the
 // paper's 0.7 m from a 24" 4K monitor.
 FlipResult flipError(const Image& test, const Image& reference, double pixelsPerDegree = 67.0);
+
+// A reference prepared once (its filtered colour and features) for many
+// test images, as a sweep measures every run against one reference:
+// compare(test) equals flipError(test, reference) and does half its work.
+class FlipReference {
+public:
+    explicit FlipReference(const Image& reference, double pixelsPerDegree = 67.0);
+    ~FlipReference();
+    FlipResult compare(const Image& test) const;
+
+private:
+    struct Side;
+    int width_, height_;
+    double ppd_;
+    std::unique_ptr<const Side> side_;
+};
 
 }  // namespace weft

@@ -7,6 +7,9 @@
 #include "core/base/error.hpp"
 #include "core/base/rng.hpp"
 #include "core/image/flip.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <tbb/task_arena.h>
 
 using namespace weft;
 
@@ -172,4 +175,23 @@ TEST(Flip, EmptyImagesGiveZero) {
     const FlipResult r = flipError(Image::rgba(0, 0), Image::rgba(0, 0));
     EXPECT_EQ(r.mean, 0.0);
     EXPECT_TRUE(r.errorMap.data().empty());
+}
+
+// A prepared reference gives flipError's map and mean for every test image
+// compared with it, and the same on one thread as on four.
+TEST(Flip, PreparedReferenceGivesTheSameMapOnAnyThreadCount) {
+    const Image reference = scene(61, 37);
+    const FlipReference prepared(reference);
+    for (float amplitude : {0.0f, 0.05f, 0.4f}) {
+        const Image test = withNoise(reference, amplitude);
+        const FlipResult once = flipError(test, reference);
+        FlipResult one, four;
+        tbb::task_arena(1).execute([&] { one = prepared.compare(test); });
+        tbb::task_arena(4).execute([&] { four = prepared.compare(test); });
+        for (const FlipResult* r : {&one, &four}) {
+            EXPECT_EQ(r->mean, once.mean) << amplitude;
+            EXPECT_EQ(r->errorMap.data(), once.errorMap.data()) << amplitude;
+        }
+    }
+    EXPECT_NE(test::errorOf([&] { prepared.compare(scene(61, 36)); }).find("61x36 vs 61x37"), std::string::npos);
 }

@@ -5,6 +5,8 @@
 #include "core/base/error.hpp"
 #include "core/image/image_compare.hpp"
 
+#include <tbb/task_arena.h>
+
 using namespace weft;
 
 namespace {
@@ -55,4 +57,61 @@ TEST(ImageCompare, NonFiniteCountsAsInfiniteErrorAndSizesMustMatch) {
     a.at(3, 3, 0) = NAN;
     EXPECT_TRUE(std::isinf(compareImages(a, constant(8, 8, 0.f)).overall.maxAbs));
     EXPECT_THROW(compareImages(constant(8, 8, 0.f), constant(8, 9, 0.f)), Error);
+}
+
+namespace {
+
+// SSIM as its definition reads: each 8x8 window (stride 4) summed twice, in long double.
+double directSsim(const Image& a, const Image& b, int c) {
+    const long double C1 = 0.01L * 0.01L, C2 = 0.03L * 0.03L;
+    long double sum = 0;
+    int windows = 0;
+    for (int y0 = 0; y0 + 8 <= a.height(); y0 += 4)
+        for (int x0 = 0; x0 + 8 <= a.width(); x0 += 4, ++windows) {
+            long double ma = 0, mb = 0, vaa = 0, vbb = 0, vab = 0;
+            for (int y = y0; y < y0 + 8; ++y)
+                for (int x = x0; x < x0 + 8; ++x) ma += a.at(x, y, c), mb += b.at(x, y, c);
+            ma /= 64, mb /= 64;
+            for (int y = y0; y < y0 + 8; ++y)
+                for (int x = x0; x < x0 + 8; ++x) {
+                    const long double da = a.at(x, y, c) - ma, db = b.at(x, y, c) - mb;
+                    vaa += da * da, vbb += db * db, vab += da * db;
+                }
+            vaa /= 63, vbb /= 63, vab /= 63;
+            sum += ((2 * ma * mb + C1) * (2 * vab + C2)) / ((ma * ma + mb * mb + C1) * (vaa + vbb + C2));
+        }
+    return double(sum / windows);
+}
+
+// Values around `offset` with noise of `spread`; the second image adds its own noise.
+std::pair<Image, Image> noisyPair(float offset, float spread) {
+    Image a = Image::rgba(37, 29), b = Image::rgba(37, 29);
+    for (std::size_t i = 0; i < a.data().size(); ++i) {
+        const float u = float((i * 2654435761u) % 1000) / 1000, v = float((i * 40503u + 7) % 997) / 997;
+        a.data()[i] = offset + spread * u;
+        b.data()[i] = offset + spread * (0.7f * u + 0.3f * v);
+    }
+    return {a, b};
+}
+
+}  // namespace
+
+// The windows' moments are joined column by column; SSIM stays the
+// definition's, also where values of 1e6 differ by 1e-1 (HDR highlights),
+// where sums of squares would lose every digit.
+TEST(ImageCompare, SsimMatchesItsDefinitionAtAnyOffset) {
+    for (const auto& [offset, spread] : {std::pair{0.0f, 1.0f}, std::pair{0.5f, 1e-3f}, std::pair{1e6f, 0.1f}, std::pair{-3e4f, 50.0f}}) {
+        const auto [a, b] = noisyPair(offset, spread);
+        const ImageComparison c = compareImages(a, b);
+        for (int ch = 0; ch < 4; ++ch)
+            EXPECT_NEAR(c.channels[ch].ssim, directSsim(a, b, ch), 1e-9) << "offset " << offset << " channel " << ch;
+        ImageComparison one, four;  // rows are summed alone, then in order: any thread count gives the same figures
+        tbb::task_arena(1).execute([&] { one = compareImages(a, b); });
+        tbb::task_arena(4).execute([&] { four = compareImages(a, b); });
+        for (const ImageComparison* r : {&one, &four}) {
+            EXPECT_EQ(r->overall.ssim, c.overall.ssim);
+            EXPECT_EQ(r->overall.rmse, c.overall.rmse);
+            EXPECT_EQ(r->overall.relMse, c.overall.relMse);
+        }
+    }
 }

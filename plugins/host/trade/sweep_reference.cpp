@@ -106,7 +106,7 @@ const Image& SweepReferences::readOnce(const std::string& path) {
     return it->second;
 }
 
-const Image& SweepReferences::imageFor(const SweepRun& run, const LoadedScene& scene) {
+std::string SweepReferences::ensurePath(const SweepRun& run, const LoadedScene& scene) {
     const std::string path = automatic() ? cachePath(run, *scene.scene) : spec_;
     if (automatic() && !loaded_.count(path) && !fs::exists(path)) {
         RenderRequest r = referenceRequest(run, *scene.scene);
@@ -115,7 +115,18 @@ const Image& SweepReferences::imageFor(const SweepRun& run, const LoadedScene& s
         const RenderOutcome out = renderLoadedScene(r, scene);
         writeExr(out.image, path, out.metadata, out.window);
     }
-    return readOnce(path);
+    return path;
+}
+
+const Image& SweepReferences::imageFor(const SweepRun& run, const LoadedScene& scene) {
+    return readOnce(ensurePath(run, scene));
+}
+
+const TradeReference& SweepReferences::measureFor(const SweepRun& run, const LoadedScene& scene) {
+    const std::string path = ensurePath(run, scene);
+    auto it = prepared_.find(path);
+    if (it == prepared_.end()) it = prepared_.try_emplace(path, readOnce(path)).first;
+    return it->second;
 }
 
 }  // namespace weft

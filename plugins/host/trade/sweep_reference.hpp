@@ -10,6 +10,7 @@
 #include "core/image/image.hpp"
 #include "plugins/host/render_job.hpp"
 #include "plugins/host/trade/sweep_plan.hpp"
+#include "plugins/host/trade/trade_metrics.hpp"
 
 namespace weft {
 
@@ -34,11 +35,15 @@ public:
     // The reference image for `run`: read once, or rendered once on `scene`
     // and cached.
     const Image& imageFor(const SweepRun& run, const LoadedScene& scene);
+    // The same reference prepared for measuring renders against it, once.
+    const TradeReference& measureFor(const SweepRun& run, const LoadedScene& scene);
 
 private:
+    std::string ensurePath(const SweepRun& run, const LoadedScene& scene);
     const Image& readOnce(const std::string& path);
     std::string spec_, cacheDir_;
     std::map<std::string, Image> loaded_;  // by path; read once each
+    std::map<std::string, TradeReference> prepared_;  // by path
 };
 
 }  // namespace weft

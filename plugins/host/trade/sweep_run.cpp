@@ -50,7 +50,7 @@ void printProgress(const SweepResult& r, std::size_t done, std::size_t total, do
 }
 
 SweepResult runOne(const SweepRun& run, const LoadedScene& scene, SweepReferences& refs, int repeat) {
-    const Image& reference = refs.imageFor(run, scene);
+    const TradeReference& reference = refs.measureFor(run, scene);
     SweepResult res{run, {}, {}, {}, 0, {}, {}, {}};
     RenderOutcome first;
     try {
@@ -68,7 +68,7 @@ SweepResult runOne(const SweepRun& run, const LoadedScene& scene, SweepReference
     res.counters = first.counters;
     res.samples = sampleCost(first.counters);
     res.params = paramsText(first);
-    res.error = measureTradeError(first.image, reference);
+    res.error = reference.measure(first.image);
     return res;
 }
 

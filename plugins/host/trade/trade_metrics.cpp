@@ -1,7 +1,6 @@
 #include "plugins/host/trade/trade_metrics.hpp"
 
 #include "core/base/error.hpp"
-#include "core/image/flip.hpp"
 #include "core/image/image_compare.hpp"
 
 namespace weft {
@@ -29,15 +28,27 @@ struct MetricName {
 constexpr MetricName kMetrics[] = {{"rmse", TradeMetric::Rmse}, {"relmse", TradeMetric::RelMse}, {"psnr", TradeMetric::Psnr},
                                    {"ssim", TradeMetric::Ssim}, {"flip", TradeMetric::Flip},     {"maxabs", TradeMetric::MaxAbs}};
 
-}  // namespace
-
-TradeError measureTradeError(const Image& test, const Image& reference) {
+void checkSameSize(const Image& test, const Image& reference) {
     if (test.width() != reference.width() || test.height() != reference.height())
         throw Error("the render is " + std::to_string(test.width()) + "x" + std::to_string(test.height()) + " but the reference is " +
                     std::to_string(reference.width()) + "x" + std::to_string(reference.height()));
-    const Image a = beautyOf(test, "render"), b = beautyOf(reference, "reference");
-    const ChannelError all = compareImages(a, b).overall;
-    return {all.rmse, all.relMse, all.psnr, all.ssim, all.maxAbs, flipError(a, b).mean};
+}
+
+}  // namespace
+
+TradeReference::TradeReference(const Image& reference) : beauty_(beautyOf(reference, "reference")), flip_(beauty_) {}
+
+TradeError TradeReference::measure(const Image& test) const {
+    checkSameSize(test, beauty_);
+    const Image a = beautyOf(test, "render");
+    const ChannelError all = compareImages(a, beauty_).overall;
+    return {all.rmse, all.relMse, all.psnr, all.ssim, all.maxAbs, flip_.compare(a).mean};
+}
+
+TradeError measureTradeError(const Image& test, const Image& reference) {
+    checkSameSize(test, reference);
+    beautyOf(test, "render");  // the render's missing channel is named before the reference's
+    return TradeReference(reference).measure(test);
 }
 
 TradeMetric parseTradeMetric(const std::string& name) {

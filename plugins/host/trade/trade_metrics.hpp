@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/image/flip.hpp"
 #include "core/image/image.hpp"
 
 namespace weft {
@@ -15,6 +16,19 @@ struct TradeError {
 
 // Throws when the sizes differ or either image lacks R, G, B or A.
 TradeError measureTradeError(const Image& test, const Image& reference);
+
+// A reference prepared once (its beauty and FLIP's filtering of it) for the
+// many renders a sweep or a search measures against it; measure(test)
+// equals measureTradeError(test, reference).
+class TradeReference {
+public:
+    explicit TradeReference(const Image& reference);  // throws when it lacks R, G, B or A
+    TradeError measure(const Image& test) const;
+
+private:
+    Image beauty_;
+    FlipReference flip_;
+};
 
 // The metrics by name, as --metric and --target spell them.
 enum class TradeMetric { Rmse, RelMse, Psnr, Ssim, Flip, MaxAbs };
