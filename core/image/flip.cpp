@@ -18,7 +18,7 @@ namespace weft {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kQc = 0.7, kPc = 0.4, kPt = 0.95, kQf = 0.5;
+constexpr double kQc = 0.7, kPc = 0.4, kPt = 0.95;  // q_f = 0.5 is a square root
 constexpr double kFeatureWidthDeg = 0.082;  // w: sigma = w/2 degrees
 
 // One channel of an image, row-major.
@@ -82,8 +82,10 @@ Vec3 huntLab(const Vec3& rgb) {
 }
 
 // HyAB: city-block in lightness, Euclidean in chroma (large differences).
+// Lab values are bounded (|a|, |b| < 300): the plain root cannot overflow, and is faster than hypot.
 double hyab(const Vec3& a, const Vec3& b) {
-    return std::abs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]);
+    const double da = a[1] - b[1], db = a[2] - b[2];
+    return std::abs(a[0] - b[0]) + std::sqrt(da * da + db * db);
 }
 
 // The largest colour error, green vs blue, after the power q_c.
@@ -95,7 +97,8 @@ double maxColorError() {
 // Compresses the powered HyAB distance into [0, 1]: the lower p_c of the
 // range maps linearly to [0, p_t], the rest to [p_t, 1].
 double remapColorError(double distance) {
-    const double e = std::pow(distance, kQc), cmax = maxColorError();
+    // In float, as the error map is kept: a double pow per pixel was most of the comparison.
+    const double e = std::pow(static_cast<float>(distance), static_cast<float>(kQc)), cmax = maxColorError();
     const double r = e < kPc * cmax ? kPt / (kPc * cmax) * e : kPt + (e - kPc * cmax) / (cmax - kPc * cmax) * (1 - kPt);
     return std::clamp(r, 0.0, 1.0);
 }
@@ -253,7 +256,8 @@ FeatureKernels featureKernels(double ppd) {
 // |(Gx * y, Gy * y)| per pixel for a derivative kernel d (Gaussian across it).
 Plane featureMagnitude(const Plane& y, const Kernel& d, const Kernel& g) {
     Plane fx = convolve(y, d, g), fy = convolve(y, g, d);
-    forPixels(fx.v.size(), [&](std::size_t i) { fx.v[i] = std::hypot(fx.v[i], fy.v[i]); });
+    // Balanced kernels keep responses in [-1, 1]: the plain root cannot overflow.
+    forPixels(fx.v.size(), [&](std::size_t i) { fx.v[i] = std::sqrt(fx.v[i] * fx.v[i] + fy.v[i] * fy.v[i]); });
     return fx;
 }
 
@@ -301,31 +305,38 @@ FlipReference::FlipReference(const Image& reference, double pixelsPerDegree)
 FlipReference::~FlipReference() = default;
 
 // dE = dEc^(1 - dEf) per pixel, dEc the remapped HyAB distance, dEf =
-// (max(|edge difference|, |point difference|) / sqrt 2)^q_f. The mean sums
-// each row, then the rows in order: the same on any thread count.
-FlipResult FlipReference::compare(const Image& test) const {
+// (max(|edge difference|, |point difference|) / sqrt 2)^q_f, into map when
+// one is given. The mean sums each row, then the rows in order: the same on
+// any thread count.
+double FlipReference::compareInto(const Image& test, float* map) const {
     if (test.width() != width_ || test.height() != height_)
         throw Error("FLIP: images differ in size: " + sizeText(test) + " vs " + std::to_string(width_) + "x" + std::to_string(height_));
     checkInputs(test, ppd_, "test");
     const FlipSide t = prepareSide(test, ppd_);
     const FlipSide& r = *side_;
-    FlipResult result{0, Image(width_, height_, {"FLIP"})};
-    float* map = result.errorMap.data().data();
     std::vector<double> rowSums(height_, 0.0);
     tbb::parallel_for(0, height_, [&](int y) {
         for (std::size_t i = std::size_t(y) * width_, end = i + width_; i < end; ++i) {
             const double ec = static_cast<float>(remapColorError(hyab(t.lab[i], r.lab[i])));
             const double d = std::max(std::abs(t.edges.v[i] - r.edges.v[i]), std::abs(t.points.v[i] - r.points.v[i])) / std::numbers::sqrt2;
-            const double ef = static_cast<float>(std::pow(std::min(d, 1.0), kQf));
-            map[i] = static_cast<float>(std::pow(ec, 1.0 - ef));
-            rowSums[y] += map[i];
+            const double ef = static_cast<float>(std::sqrt(std::min(d, 1.0)));  // q_f = 1/2
+            const float e = std::pow(static_cast<float>(ec), static_cast<float>(1.0 - ef));  // float, as the map is
+            if (map) map[i] = e;
+            rowSums[y] += e;
         }
     });
     double total = 0;
     for (double s : rowSums) total += s;
-    result.mean = width_ * height_ == 0 ? 0 : total / (double(width_) * height_);
+    return width_ * height_ == 0 ? 0 : total / (double(width_) * height_);
+}
+
+FlipResult FlipReference::compare(const Image& test) const {
+    FlipResult result{0, Image(width_, height_, {"FLIP"})};
+    result.mean = compareInto(test, result.errorMap.data().data());
     return result;
 }
+
+double FlipReference::meanError(const Image& test) const { return compareInto(test, nullptr); }
 
 FlipResult flipError(const Image& test, const Image& reference, double pixelsPerDegree) {
     if (test.width() != reference.width() || test.height() != reference.height())

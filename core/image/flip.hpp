@@ -41,8 +41,10 @@ public:
     explicit FlipReference(const Image& reference, double pixelsPerDegree = 67.0);
     ~FlipReference();
     FlipResult compare(const Image& test) const;
+    double meanError(const Image& test) const;  // compare(test).mean without the map
 
 private:
+    double compareInto(const Image& test, float* map) const;
     struct Side;
     int width_, height_;
     double ppd_;

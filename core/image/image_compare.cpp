@@ -27,10 +27,9 @@ double psnrFromMse(double mse) {
     return mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
 }
 
-// Count, means and centred sums of squares and products of a set of
-// (a, b) pixel pairs. Sets join by Chan et al.'s pairwise update, which
-// stays exact where the means dwarf the spread (HDR values), as a
-// two-pass sum does and sums of squares do not.
+// Means and centred sums of squares and products of n (a, b) pixel pairs.
+// Centred sums stay exact where the means dwarf the spread (HDR values), as
+// a two-pass sum does and sums of squares do not.
 struct Moments {
     double n = 0, ma = 0, mb = 0, aa = 0, bb = 0, ab = 0;
     // count values down a column: a[i * strideA], b[i * strideB].
@@ -45,10 +44,19 @@ struct Moments {
         }
         return m;
     }
-    void join(const Moments& o) {
-        const double total = n + o.n, da = o.ma - ma, db = o.mb - mb, f = n * o.n / total;
-        aa += o.aa + da * da * f, bb += o.bb + db * db * f, ab += o.ab + da * db * f;
-        ma += da * o.n / total, mb += db * o.n / total, n = total;
+    // Columns of equal counts joined: the mean of their means, and each
+    // column's centred sums moved to that mean (the parallel axis theorem).
+    static Moments join(const Moments* columns, int count) {
+        Moments m;
+        for (int i = 0; i < count; ++i) m.ma += columns[i].ma, m.mb += columns[i].mb;
+        m.ma /= count, m.mb /= count;
+        for (int i = 0; i < count; ++i) {
+            const Moments& c = columns[i];
+            const double da = c.ma - m.ma, db = c.mb - m.mb;
+            m.aa += c.aa + c.n * da * da, m.bb += c.bb + c.n * db * db, m.ab += c.ab + c.n * da * db;
+            m.n += c.n;
+        }
+        return m;
     }
 };
 
@@ -78,9 +86,7 @@ double channelSsim(const Image& a, int ca, const Image& b, int cb) {
         std::vector<Moments> columns(w);
         for (int x = 0; x < w; ++x) columns[x] = Moments::of(a.pixel(x, y0) + ca, strideA, b.pixel(x, y0) + cb, strideB, winY);
         for (int i = 0; i < perRow; ++i) {
-            Moments m = columns[i * kStride];
-            for (int x = i * kStride + 1; x < i * kStride + winX; ++x) m.join(columns[x]);
-            rowSums[row] += windowSsim(m);
+            rowSums[row] += windowSsim(Moments::join(&columns[i * kStride], winX));
         }
     });
     double sum = 0;

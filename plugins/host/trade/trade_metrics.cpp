@@ -9,12 +9,16 @@ namespace {
 
 constexpr const char* kBeauty[] = {"R", "G", "B", "A"};
 
+void requireBeauty(const Image& img, const char* role) {
+    for (const char* c : kBeauty)
+        if (img.channelIndex(c) < 0) throw Error(std::string("the ") + role + " has no " + c + " channel");
+}
+
 Image beautyOf(const Image& img, const char* role) {
+    requireBeauty(img, role);
     Image out(img.width(), img.height(), {kBeauty, kBeauty + 4});
     int index[4];
-    for (int c = 0; c < 4; ++c)
-        if ((index[c] = img.channelIndex(kBeauty[c])) < 0)
-            throw Error(std::string("the ") + role + " has no " + kBeauty[c] + " channel");
+    for (int c = 0; c < 4; ++c) index[c] = img.channelIndex(kBeauty[c]);
     for (int y = 0; y < img.height(); ++y)
         for (int x = 0; x < img.width(); ++x)
             for (int c = 0; c < 4; ++c) out.at(x, y, c) = img.at(x, y, index[c]);
@@ -38,16 +42,18 @@ void checkSameSize(const Image& test, const Image& reference) {
 
 TradeReference::TradeReference(const Image& reference) : beauty_(beautyOf(reference, "reference")), flip_(beauty_) {}
 
+// The render is used as it is: compareImages takes the reference's channels
+// (the beauty) by name, and FLIP reads R, G and B by name.
 TradeError TradeReference::measure(const Image& test) const {
     checkSameSize(test, beauty_);
-    const Image a = beautyOf(test, "render");
-    const ChannelError all = compareImages(a, beauty_).overall;
-    return {all.rmse, all.relMse, all.psnr, all.ssim, all.maxAbs, flip_.compare(a).mean};
+    requireBeauty(test, "render");
+    const ChannelError all = compareImages(test, beauty_).overall;
+    return {all.rmse, all.relMse, all.psnr, all.ssim, all.maxAbs, flip_.meanError(test)};
 }
 
 TradeError measureTradeError(const Image& test, const Image& reference) {
     checkSameSize(test, reference);
-    beautyOf(test, "render");  // the render's missing channel is named before the reference's
+    requireBeauty(test, "render");  // the render's missing channel is named before the reference's
     return TradeReference(reference).measure(test);
 }
 
