@@ -224,7 +224,7 @@ bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offs
     const auto sample = [&](const Vec3d& p, double h) {
         const TfSample s = tf.lookup(sampler.isSample(p));
         ++n;
-        acc.add(s, segmentOpacity(s.extinction * depthScale, float(h)));
+        if (s.extinction > 0) acc.add(s, segmentOpacity(s.extinction * depthScale, float(h)));  // else it adds nothing
     };
     bool more;
     if (auto& visible = crossings_.front().lookup->visible)  // a hidden cell's sample has zero extinction: adds nothing
