@@ -82,7 +82,7 @@ Vec3 huntLab(const Vec3& rgb) {
 }
 
 // HyAB: city-block in lightness, Euclidean in chroma (large differences).
-// Lab values are bounded (|a|, |b| < 300): the plain root cannot overflow, and is faster than hypot.
+// Lab values of colours in [0, 1] are bounded (|a|, |b| < 500): the plain root cannot overflow, and is faster than hypot.
 double hyab(const Vec3& a, const Vec3& b) {
     const double da = a[1] - b[1], db = a[2] - b[2];
     return std::abs(a[0] - b[0]) + std::sqrt(da * da + db * db);
@@ -103,6 +103,13 @@ double remapColorError(double distance) {
     return std::clamp(r, 0.0, 1.0);
 }
 
+// out[x] += k * src[x] over a run of n pixels: the convolutions' inner
+// loop, also compiled for AVX2 and chosen at load time where the CPU has it
+// (no FMA either way: the same sums on any machine).
+[[gnu::target_clones("avx2", "default")]] void addScaledRun(float* out, const float* src, float k, int n) {
+    for (int x = 0; x < n; ++x) out[x] += k * src[x];
+}
+
 // 1-D correlation along a row, clamped to the edge. The interior adds one
 // tap at a time over the whole run of pixels (contiguous, so it
 // vectorises), in the same tap order as a per-pixel sum; the ends clamp.
@@ -117,11 +124,7 @@ void correlateRow(const float* row, int w, const std::vector<float>& k, float* o
     for (int x = 0; x < begin; ++x) clamped(x);
     for (int x = end; x < w; ++x) clamped(x);
     std::fill(out + begin, out + end, 0.0f);
-    for (std::size_t j = 0; j < k.size(); ++j) {
-        const float kj = k[j];
-        const float* src = row + j - r;
-        for (int x = begin; x < end; ++x) out[x] += kj * src[x];
-    }
+    for (std::size_t j = 0; j < k.size(); ++j) addScaledRun(out + begin, row + begin + j - r, k[j], end - begin);
 }
 
 // Rows are independent, so they run in parallel and the result does not
@@ -134,11 +137,8 @@ Plane convolve1d(const Plane& p, const Kernel& kernel, bool alongRows) {
     tbb::parallel_for(0, p.h, [&](int y) {
         float* o = &out.v[static_cast<std::size_t>(y) * p.w];
         if (alongRows) return correlateRow(&p.v[static_cast<std::size_t>(y) * p.w], p.w, k, o);
-        for (int j = -r; j <= r; ++j) {
-            const float* src = &p.v[static_cast<std::size_t>(std::clamp(y + j, 0, p.h - 1)) * p.w];
-            const float kj = k[j + r];
-            for (int x = 0; x < p.w; ++x) o[x] += kj * src[x];
-        }
+        for (int j = -r; j <= r; ++j)
+            addScaledRun(o, &p.v[static_cast<std::size_t>(std::clamp(y + j, 0, p.h - 1)) * p.w], k[j + r], p.w);
     });
     return out;
 }
