@@ -1,10 +1,7 @@
 // Mesh files: OBJ (+MTL, `t crease`/`t corner` tags) through tinyobjloader,
 // which keeps the file's vertex indices so subdivision sees the real
-// topology; PLY through Assimp. Both are checked after reading: indices in
+// topology; PLY through Assimp (core/mesh/mesh_codec.hpp). Both are checked after reading: indices in
 // range, at least one face, finite positions.
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -21,6 +18,7 @@
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
 #include "core/mesh/mesh.hpp"
+#include "core/mesh/mesh_codec.hpp"
 
 namespace fs = std::filesystem;
 
@@ -201,26 +199,12 @@ void checkPlyHeader(const std::string& path) {
 
 PolyMesh readPly(const std::string& path) {
     checkPlyHeader(path);
-    Assimp::Importer importer;
-    // Validation runs before the other steps: joining vertices indexes them by
-    // the file's face indices unchecked, and crashed on one out of range.
-    const aiScene* scene = importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_JoinIdenticalVertices);
-    if (!scene) fail(path, oneLine(importer.GetErrorString()));
     PolyMesh out;
+    std::vector<float> xyz;
+    if (const std::string error = meshCodec().readPly(path, xyz, out.faceSizes, out.faceIndices); !error.empty()) fail(path, oneLine(error));
+    for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) out.positions.emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
     out.materials.emplace_back();
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-        const aiMesh& mesh = *scene->mMeshes[m];
-        const int base = int(out.positions.size());
-        for (unsigned i = 0; i < mesh.mNumVertices; ++i)
-            out.positions.emplace_back(mesh.mVertices[i].x, mesh.mVertices[i].y, mesh.mVertices[i].z);
-        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-            const aiFace& face = mesh.mFaces[f];
-            if (face.mNumIndices < 3) continue;  // points and lines carry no surface
-            for (unsigned k = 0; k < face.mNumIndices; ++k) out.faceIndices.push_back(base + int(face.mIndices[k]));
-            out.faceSizes.push_back(int(face.mNumIndices));
-            out.faceMaterial.push_back(0);
-        }
-    }
+    out.faceMaterial.assign(out.faceSizes.size(), 0);
     return out;
 }
 

@@ -1,0 +1,21 @@
+#pragma once
+// weft's optional modules: shared objects beside the executable that link
+// a heavy library (OpenImageIO, Assimp) which only some commands need, so
+// that a process loads it the first time it needs it instead of resolving
+// its symbols at every start-up.
+#include <functional>
+#include <string>
+
+namespace weft {
+
+// Opens the module `fileName` and returns what its extern "C" function
+// `entry` (no arguments) returns, the first one `accepts` (the caller's ABI
+// check). Tried in order: the path in environment variable `envVar` if set,
+// fileName beside the running executable, beside the shared object this
+// code is in (the Python module, whose executable is python3), then the
+// loader's own search (LD_LIBRARY_PATH). Throws weft::Error naming every
+// path tried and why it failed.
+const void* loadModule(const std::string& fileName, const char* envVar, const char* entry,
+                       const std::function<bool(const void*)>& accepts);
+
+}  // namespace weft
