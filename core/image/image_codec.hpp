@@ -1,7 +1,9 @@
 #pragma once
-// Image files are encoded and decoded by OpenImageIO, kept behind this small
-// interface in its own shared module (weft_oiio.so beside the executable,
-// loaded the first time an image is read or written). OpenImageIO links
+// Previews and images other than plain EXRs (which OpenEXR reads and writes
+// itself: core/image/exr_reader.hpp, exr_writer.hpp) are encoded and decoded
+// by OpenImageIO, kept behind this small interface in its own shared module
+// (weft_oiio.so beside the executable, loaded the first time one is needed:
+// core/base/module_loader.hpp). OpenImageIO links
 // about 260 shared libraries; resolving their symbols at start-up would cost
 // every weft process a tenth of a second, including the many short renders
 // of a benchmark or a farm.

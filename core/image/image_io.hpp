@@ -1,5 +1,5 @@
 #pragma once
-// Image files (OpenImageIO, through core/image/image_codec.hpp): multi-channel EXR with render metadata,
+// Image files (OpenEXR; OpenImageIO through core/image/image_codec.hpp): multi-channel EXR with render metadata,
 // and display-referred previews (PNG/JPEG/TIFF) through OpenColorIO.
 #include <string>
 #include <utility>
@@ -29,8 +29,9 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
 void writeExr(const Image& image, const std::string& path, const Metadata& metadata, const ImageWindow& window,
               const ExrEncoding& encoding = {});
 
-// Reads any image OpenImageIO understands, as float; metadata receives the
-// string attributes and window the data and display windows, when given.
+// Reads any image OpenImageIO understands, as float (an EXR through OpenEXR
+// itself, core/image/exr_reader.hpp); metadata receives the string
+// attributes and window the data and display windows, when given.
 Image readImage(const std::string& path, Metadata* metadata = nullptr, ImageWindow* window = nullptr);
 
 // Writes an 8-bit display-referred preview (format from the extension),
