@@ -14,6 +14,7 @@
 #include <openvdb/openvdb.h>
 
 #include "core/volume/dense_copy.hpp"
+#include "core/volume/leaf_region.hpp"
 
 namespace weft {
 
@@ -57,12 +58,7 @@ public:
     Value wsSample(const openvdb::Vec3d& p) { return isSample(xf_->worldToIndex(p)); }
 
 private:
-    // One 8^3 region: a leaf's values, or the one tile (or background) value covering it.
-    struct Region {
-        const Value* data = nullptr;
-        Value constant = openvdb::zeroVal<Value>();
-        Value at(int offset) const { return data ? data[offset] : constant; }
-    };
+    using Region = LeafRegion<Value>;
 
     static Value lerp(const Value& a, const Value& b, float w) { return a + (b - a) * w; }
     static Value trilinear(const Value (&v)[2][2][2], float u, float s, float t) {
@@ -75,12 +71,7 @@ private:
         region_[0] = probe(origin);
         probed_ = 1;  // the neighbours are probed when a cell first reaches them
     }
-    Region probe(const openvdb::Coord& origin) const {
-        Region r;
-        if (const auto* leaf = acc_->probeConstLeaf(origin)) r.data = leaf->buffer().data();
-        else r.constant = acc_->getValue(origin);
-        return r;
-    }
+    Region probe(const openvdb::Coord& origin) const { return Region::of(*acc_, origin); }
     const Region& neighbour(int j) {
         if (!(probed_ >> j & 1)) {
             region_[j] = probe(origin_.offsetBy(j >> 2 & 1 ? 8 : 0, j >> 1 & 1 ? 8 : 0, j & 1 ? 8 : 0));

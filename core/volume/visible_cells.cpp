@@ -11,6 +11,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/volume/leaf_region.hpp"
+
 namespace weft {
 
 namespace {
@@ -31,29 +33,16 @@ Range rangeOf(float v) {
 }
 Range join(Range a, Range b) { return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)}; }
 
-// One 8^3 region of the grid: a leaf's values, or the one tile (or
-// background) value covering it.
-struct Region {
-    const float* data = nullptr;
-    float constant = 0;
-    float at(int offset) const { return data ? data[offset] : constant; }
-};
-
 // The visible cells of one leaf's neighbourhood: the leaf's values and the
 // one-voxel apron around it, read from the 26 neighbouring regions' buffers
 // (a tree lookup per neighbour, not per apron voxel).
 CellBits visibleCellsOf(const Leaf& leaf, const openvdb::FloatGrid::ConstAccessor& acc, const TransferFunction& tf) {
     static thread_local std::vector<Range> block(kSpan * kSpan * kSpan);
-    Region regions[3][3][3];
+    LeafRegion<float> regions[3][3][3];
     for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
-            for (int dz = -1; dz <= 1; ++dz) {
-                const openvdb::Coord origin = leaf.origin().offsetBy(8 * dx, 8 * dy, 8 * dz);
-                Region& r = regions[dx + 1][dy + 1][dz + 1];
-                if (dx == 0 && dy == 0 && dz == 0) r.data = leaf.buffer().data();
-                else if (const Leaf* n = acc.probeConstLeaf(origin)) r.data = n->buffer().data();
-                else r.constant = acc.getValue(origin);
-            }
+            for (int dz = -1; dz <= 1; ++dz)
+                regions[dx + 1][dy + 1][dz + 1] = LeafRegion<float>::of(acc, leaf.origin().offsetBy(8 * dx, 8 * dy, 8 * dz));
     // Block index 0..9 on an axis is voxel -1..8 of the leaf: region 0, 1 or 2 and the offset in it.
     const auto regionOf = [](int b) { return b == 0 ? 0 : b == kSpan - 1 ? 2 : 1; };
     const auto offsetIn = [](int b) { return (b + 7) & 7; };
@@ -61,7 +50,7 @@ CellBits visibleCellsOf(const Leaf& leaf, const openvdb::FloatGrid::ConstAccesso
     for (int x = 0; x < kSpan; ++x)
         for (int y = 0; y < kSpan; ++y)
             for (int z = 0; z < kSpan; ++z) {
-                const Region& r = regions[regionOf(x)][regionOf(y)][regionOf(z)];
+                const LeafRegion<float>& r = regions[regionOf(x)][regionOf(y)][regionOf(z)];
                 const float v = r.at(offsetIn(x) << 6 | offsetIn(y) << 3 | offsetIn(z));
                 all = join(all, block[(x * kSpan + y) * kSpan + z] = rangeOf(v));
             }
