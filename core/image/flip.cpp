@@ -6,12 +6,14 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/base/error.hpp"
+#include "core/base/large_buffer.hpp"
 
 namespace weft {
 
@@ -21,11 +23,12 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kQc = 0.7, kPc = 0.4, kPt = 0.95;  // q_f = 0.5 is a square root
 constexpr double kFeatureWidthDeg = 0.082;  // w: sigma = w/2 degrees
 
-// One channel of an image, row-major.
+// One channel of an image, row-major; uninitialised, as every pass writes
+// its planes whole (in parallel, so their pages are first touched on every thread).
 struct Plane {
     int w = 0, h = 0;
-    std::vector<float> v;
-    Plane(int width, int height) : w(width), h(height), v(static_cast<std::size_t>(width) * height, 0.0f) {}
+    FreshBuffer<float> v;
+    Plane(int width, int height) : w(width), h(height), v(static_cast<std::size_t>(width) * height) {}
     float& at(int x, int y) { return v[static_cast<std::size_t>(y) * w + x]; }
     float at(int x, int y) const { return v[static_cast<std::size_t>(y) * w + x]; }
 };
@@ -33,6 +36,7 @@ struct Plane {
 using Kernel = std::vector<double>;  // odd length, centred on the middle tap
 using Vec3 = std::array<double, 3>;
 using Mat3 = std::array<Vec3, 3>;
+using Lab = std::array<float, 3>;  // Hunt-adjusted CIELAB
 
 // Linear sRGB (Rec.709 primaries, D65) to CIE XYZ, and back.
 constexpr Mat3 kRgbToXyz{{{0.4124564, 0.3575761, 0.1804375},
@@ -42,55 +46,90 @@ constexpr Mat3 kXyzToRgb{{{3.2404542, -1.5371385, -0.4985314},
                           {-0.9692660, 1.8760108, 0.0415560},
                           {0.0556434, -0.2040259, 1.0572252}}};
 
-Vec3 mul(const Mat3& m, const Vec3& v) {
-    Vec3 r{};
-    for (int i = 0; i < 3; ++i) r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+Mat3 mul(const Mat3& a, const Mat3& b) {
+    Mat3 r{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
     return r;
 }
 
-// XYZ divided by the white point (the XYZ of RGB 1, 1, 1).
-Vec3 rgbToRelXyz(const Vec3& rgb) {
-    static const Vec3 white = mul(kRgbToXyz, {1, 1, 1});
-    const Vec3 xyz = mul(kRgbToXyz, rgb);
-    return {xyz[0] / white[0], xyz[1] / white[1], xyz[2] / white[2]};
+Mat3 diagonal(const Vec3& d) { return {{{d[0], 0, 0}, {0, d[1], 0}, {0, 0, d[2]}}}; }
+
+// The XYZ of RGB 1, 1, 1: XYZ is taken relative to it.
+Vec3 whiteXyz() {
+    Vec3 w{};
+    for (int i = 0; i < 3; ++i) w[i] = kRgbToXyz[i][0] + kRgbToXyz[i][1] + kRgbToXyz[i][2];
+    return w;
 }
 
-Vec3 relXyzToRgb(const Vec3& rel) {
-    static const Vec3 white = mul(kRgbToXyz, {1, 1, 1});
-    return mul(kXyzToRgb, {rel[0] * white[0], rel[1] * white[1], rel[2] * white[2]});
+// out = m in + offset, in float: the colour conversions per pixel. Each is
+// a product of the paper's linear steps, formed once in double.
+struct Affine3 {
+    std::array<std::array<float, 3>, 3> m{};
+    std::array<float, 3> offset{};
+    Affine3(const Mat3& mat, const Vec3& off) {
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) m[i][j] = static_cast<float>(mat[i][j]);
+            offset[i] = static_cast<float>(off[i]);
+        }
+    }
+    std::array<float, 3> operator()(float a, float b, float c) const {
+        return {m[0][0] * a + m[0][1] * b + m[0][2] * c + offset[0], m[1][0] * a + m[1][1] * b + m[1][2] * c + offset[1],
+                m[2][0] * a + m[2][1] * b + m[2][2] * c + offset[2]};
+    }
+};
+
+// YCxCz (CIELAB without the cube root, so it is linear and may be
+// filtered) from relative XYZ: (116 Y - 16, 500 (X - Y), 200 (Y - Z)).
+constexpr Mat3 kRelXyzToYcxcz{{{0, 116, 0}, {500, -500, 0}, {0, 200, -200}}};
+constexpr Mat3 kYcxczToRelXyz{{{1.0 / 116, 1.0 / 500, 0}, {1.0 / 116, 0, 0}, {1.0 / 116, 0, -1.0 / 200}}};
+constexpr Vec3 kYcxczToRelXyzOffset{16.0 / 116, 16.0 / 116, 16.0 / 116};
+
+const Affine3& rgbToRelXyz() {
+    static const Vec3 w = whiteXyz();
+    static const Affine3 a(mul(diagonal({1 / w[0], 1 / w[1], 1 / w[2]}), kRgbToXyz), {0, 0, 0});
+    return a;
 }
 
-// YCxCz: CIELAB without the cube root, so it is linear and may be filtered.
-Vec3 relXyzToYcxcz(const Vec3& x) { return {116 * x[1] - 16, 500 * (x[0] - x[1]), 200 * (x[1] - x[2])}; }
-
-Vec3 ycxczToRelXyz(const Vec3& c) {
-    const double y = (c[0] + 16) / 116;
-    return {y + c[1] / 500, y, y - c[2] / 200};
+const Affine3& rgbToYcxcz() {
+    static const Vec3 w = whiteXyz();
+    static const Affine3 a(mul(kRelXyzToYcxcz, mul(diagonal({1 / w[0], 1 / w[1], 1 / w[2]}), kRgbToXyz)), {-16, 0, 0});
+    return a;
 }
 
-double labF(double t) {
-    constexpr double d = 6.0 / 29.0;
-    return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0 / 29.0;
+const Affine3& ycxczToRgb() {
+    static const Vec3 w = whiteXyz();
+    static const Mat3 toRgb = mul(kXyzToRgb, diagonal(w));
+    static const Affine3 a(mul(toRgb, kYcxczToRelXyz),
+                           {toRgb[0][0] * kYcxczToRelXyzOffset[0] + toRgb[0][1] * kYcxczToRelXyzOffset[1] + toRgb[0][2] * kYcxczToRelXyzOffset[2],
+                            toRgb[1][0] * kYcxczToRelXyzOffset[0] + toRgb[1][1] * kYcxczToRelXyzOffset[1] + toRgb[1][2] * kYcxczToRelXyzOffset[2],
+                            toRgb[2][0] * kYcxczToRelXyzOffset[0] + toRgb[2][1] * kYcxczToRelXyzOffset[1] + toRgb[2][2] * kYcxczToRelXyzOffset[2]});
+    return a;
+}
+
+float labF(float t) {
+    constexpr float d = 6.0f / 29.0f;
+    return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0f / 29.0f;
 }
 
 // CIELAB with the Hunt adjustment (chroma scaled by L/100): dark colours differ less.
-Vec3 huntLab(const Vec3& rgb) {
-    const Vec3 x = rgbToRelXyz(rgb);
-    const double fx = labF(x[0]), fy = labF(x[1]), fz = labF(x[2]);
-    const double L = 116 * fy - 16;
-    return {L, 0.01 * L * 500 * (fx - fy), 0.01 * L * 200 * (fy - fz)};
+Lab huntLab(float r, float g, float b) {
+    const std::array<float, 3> x = rgbToRelXyz()(r, g, b);
+    const float fx = labF(x[0]), fy = labF(x[1]), fz = labF(x[2]);
+    const float L = 116 * fy - 16;
+    return {L, 0.01f * L * 500 * (fx - fy), 0.01f * L * 200 * (fy - fz)};
 }
 
 // HyAB: city-block in lightness, Euclidean in chroma (large differences).
 // Lab values of colours in [0, 1] are bounded (|a|, |b| < 500): the plain root cannot overflow, and is faster than hypot.
-double hyab(const Vec3& a, const Vec3& b) {
-    const double da = a[1] - b[1], db = a[2] - b[2];
-    return std::abs(a[0] - b[0]) + std::sqrt(da * da + db * db);
+double hyab(const Lab& a, const Lab& b) {
+    const double da = double(a[1]) - b[1], db = double(a[2]) - b[2];
+    return std::abs(double(a[0]) - b[0]) + std::sqrt(da * da + db * db);
 }
 
 // The largest colour error, green vs blue, after the power q_c.
 double maxColorError() {
-    static const double cmax = std::pow(hyab(huntLab({0, 1, 0}), huntLab({0, 0, 1})), kQc);
+    static const double cmax = std::pow(hyab(huntLab(0, 1, 0), huntLab(0, 0, 1)), kQc);
     return cmax;
 }
 
@@ -127,24 +166,38 @@ void correlateRow(const float* row, int w, const std::vector<float>& k, float* o
     for (std::size_t j = 0; j < k.size(); ++j) addScaledRun(out + begin, row + begin + j - r, k[j], end - begin);
 }
 
+std::vector<float> taps(const Kernel& kernel, double scale = 1) {
+    std::vector<float> k(kernel.size());
+    for (std::size_t i = 0; i < k.size(); ++i) k[i] = static_cast<float>(kernel[i] * scale);
+    return k;
+}
+
 // Rows are independent, so they run in parallel and the result does not
-// depend on the thread count. Along columns, whole rows are scaled and
-// added (contiguous, so it vectorises).
-Plane convolve1d(const Plane& p, const Kernel& kernel, bool alongRows) {
+// depend on the thread count.
+Plane filterRows(const Plane& p, const std::vector<float>& k) {
     Plane out(p.w, p.h);
-    const std::vector<float> k(kernel.begin(), kernel.end());
-    const int r = static_cast<int>(k.size() / 2);
     tbb::parallel_for(0, p.h, [&](int y) {
-        float* o = &out.v[static_cast<std::size_t>(y) * p.w];
-        if (alongRows) return correlateRow(&p.v[static_cast<std::size_t>(y) * p.w], p.w, k, o);
-        for (int j = -r; j <= r; ++j)
-            addScaledRun(o, &p.v[static_cast<std::size_t>(std::clamp(y + j, 0, p.h - 1)) * p.w], k[j + r], p.w);
+        correlateRow(&p.v[static_cast<std::size_t>(y) * p.w], p.w, k, &out.v[static_cast<std::size_t>(y) * p.w]);
     });
     return out;
 }
 
-Plane convolve(const Plane& p, const Kernel& kx, const Kernel& ky) {
-    return convolve1d(convolve1d(p, kx, true), ky, false);
+// p filtered along columns, into out (add: added to it): whole rows are
+// scaled and added (contiguous, so it vectorises), one output row per task.
+void filterColumnsInto(const Plane& p, const std::vector<float>& k, Plane& out, bool add) {
+    const int r = static_cast<int>(k.size() / 2);
+    tbb::parallel_for(0, p.h, [&](int y) {
+        float* o = &out.v[static_cast<std::size_t>(y) * p.w];
+        if (!add) std::fill(o, o + p.w, 0.0f);
+        for (int j = -r; j <= r; ++j)
+            addScaledRun(o, &p.v[static_cast<std::size_t>(std::clamp(y + j, 0, p.h - 1)) * p.w], k[j + r], p.w);
+    });
+}
+
+Plane filterColumns(const Plane& p, const std::vector<float>& k) {
+    Plane out(p.w, p.h);
+    filterColumnsInto(p, k, out, false);
+    return out;
 }
 
 // fn(i) for every pixel index, in parallel; each i is written by one call,
@@ -154,11 +207,6 @@ void forPixels(std::size_t n, Fn&& fn) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) fn(i);
     });
-}
-
-// out += w * p
-void addScaled(Plane& out, const Plane& p, double w) {
-    forPixels(out.v.size(), [&](std::size_t i) { out.v[i] += static_cast<float>(w * p.v[i]); });
 }
 
 // One channel's contrast sensitivity as a sum of two Gaussians in visual
@@ -181,7 +229,9 @@ double sum(const Kernel& k) {
 }
 
 // The 2-D filter is separable per Gaussian term; the whole is normalised to
-// sum 1, so flat regions keep their colour. Radius: 3 sigma of the widest term.
+// sum 1, so flat regions keep their colour. Radius: 3 sigma of the widest
+// term. Each term's weight rides on its column taps, and the terms' column
+// passes write into one plane, the first setting it and the rest adding.
 Plane csfFilter(const Plane& p, const Csf& c, double ppd) {
     const double bMax = c.a2 > 0 ? std::max(c.b1, c.b2) : c.b1;
     const int radius = static_cast<int>(std::ceil(3 * std::sqrt(bMax / (2 * kPi * kPi)) * ppd));
@@ -190,38 +240,44 @@ Plane csfFilter(const Plane& p, const Csf& c, double ppd) {
     double total = 0;
     for (const auto& [w, k] : terms) total += w * sum(k) * sum(k);
     Plane out(p.w, p.h);
-    for (const auto& [w, k] : terms) addScaled(out, convolve(p, k, k), w / total);
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+        const auto& [w, k] = terms[i];
+        filterColumnsInto(filterRows(p, taps(k)), taps(k, w / total), out, i > 0);
+    }
     return out;
 }
 
 // A display value: clamped to [0, 1], NaN shows as black.
-double displayValue(float v) { return std::isnan(v) ? 0.0 : std::clamp(static_cast<double>(v), 0.0, 1.0); }
+float displayValue(float v) { return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f); }
 
-// R, G, B as displayed, as YCxCz planes.
-std::array<Plane, 3> toYcxcz(const Image& img) {
+// R, G, B as displayed, as YCxCz planes, and the achromatic channel in
+// [0, 1] (relative luminance, YCxCz's Y rescaled) for the features.
+struct DisplayPlanes {
+    std::array<Plane, 3> ycxcz;
+    Plane achromatic;
+};
+
+DisplayPlanes toYcxcz(const Image& img) {
     const int ch[3] = {img.channelIndex("R"), img.channelIndex("G"), img.channelIndex("B")};
-    const Plane empty(img.width(), img.height());
-    std::array<Plane, 3> out{empty, empty, empty};
-    const int w = img.width();
-    forPixels(empty.v.size(), [&](std::size_t p) {
-        const int x = static_cast<int>(p % w), y = static_cast<int>(p / w);
-        Vec3 rgb;
-        for (int i = 0; i < 3; ++i) rgb[i] = displayValue(img.at(x, y, ch[i]));
-        const Vec3 c = relXyzToYcxcz(rgbToRelXyz(rgb));
-        for (int i = 0; i < 3; ++i) out[i].v[p] = static_cast<float>(c[i]);
+    const int w = img.width(), h = img.height(), n = img.channelCount();
+    DisplayPlanes out{{Plane(w, h), Plane(w, h), Plane(w, h)}, Plane(w, h)};
+    const Affine3& toYcxcz = rgbToYcxcz();
+    tbb::parallel_for(0, h, [&](int y) {
+        const float* px = img.pixel(0, y);
+        for (std::size_t x = 0, i = std::size_t(y) * w; x < std::size_t(w); ++x, ++i, px += n) {
+            const std::array<float, 3> c = toYcxcz(displayValue(px[ch[0]]), displayValue(px[ch[1]]), displayValue(px[ch[2]]));
+            for (int k = 0; k < 3; ++k) out.ycxcz[k].v[i] = c[k];
+            out.achromatic.v[i] = (c[0] + 16) / 116;
+        }
     });
     return out;
 }
 
-// A CSF-filtered YCxCz image as Hunt-adjusted CIELAB, per pixel.
-std::vector<Vec3> toHuntLab(const std::array<Plane, 3>& p) {
-    std::vector<Vec3> out(p[0].v.size());
-    forPixels(out.size(), [&](std::size_t i) {
-        Vec3 rgb = relXyzToRgb(ycxczToRelXyz({p[0].v[i], p[1].v[i], p[2].v[i]}));
-        for (double& c : rgb) c = std::clamp(c, 0.0, 1.0);
-        out[i] = huntLab(rgb);
-    });
-    return out;
+// A CSF-filtered YCxCz pixel as Hunt-adjusted CIELAB.
+Lab filteredLab(const std::array<Plane, 3>& p, std::size_t i) {
+    std::array<float, 3> rgb = ycxczToRgb()(p[0].v[i], p[1].v[i], p[2].v[i]);
+    for (float& c : rgb) c = std::clamp(c, 0.0f, 1.0f);
+    return huntLab(rgb[0], rgb[1], rgb[2]);
 }
 
 // Scales positive taps to sum 1 and negative taps to sum -1, so a response
@@ -236,36 +292,30 @@ void balance(Kernel& k) {
 // 2-D kernels are derivative x Gaussian, so balancing the 1-D derivative
 // balances the 2-D kernel as the paper does (positive 1, negative -1).
 struct FeatureKernels {
-    Kernel gauss, edge, point;
+    std::vector<float> gauss, edge, point;
 };
 
 FeatureKernels featureKernels(double ppd) {
     const double sd = 0.5 * kFeatureWidthDeg * ppd;
     const int radius = static_cast<int>(std::ceil(3 * sd));
-    FeatureKernels f{Kernel(2 * radius + 1), Kernel(2 * radius + 1), Kernel(2 * radius + 1)};
+    Kernel gauss(2 * radius + 1), edge(2 * radius + 1), point(2 * radius + 1);
     for (int i = -radius; i <= radius; ++i) {
         const double g = std::exp(-0.5 * i * i / (sd * sd));
-        f.gauss[i + radius] = g, f.edge[i + radius] = -i * g, f.point[i + radius] = (i * i / (sd * sd) - 1) * g;
+        gauss[i + radius] = g, edge[i + radius] = -i * g, point[i + radius] = (i * i / (sd * sd) - 1) * g;
     }
-    const double s = sum(f.gauss);
-    for (double& v : f.gauss) v /= s;
-    balance(f.edge), balance(f.point);
-    return f;
+    balance(edge), balance(point);
+    return {taps(gauss, 1 / sum(gauss)), taps(edge), taps(point)};
 }
 
-// |(Gx * y, Gy * y)| per pixel for a derivative kernel d (Gaussian across it).
-Plane featureMagnitude(const Plane& y, const Kernel& d, const Kernel& g) {
-    Plane fx = convolve(y, d, g), fy = convolve(y, g, d);
+// |(Gx * y, Gy * y)| per pixel for a derivative kernel d, the Gaussian
+// across it; gRows is y filtered along rows by the Gaussian, which the
+// edges and the points share.
+Plane featureMagnitude(const Plane& y, const Plane& gRows, const std::vector<float>& d, const std::vector<float>& g) {
+    Plane fx = filterColumns(filterRows(y, d), g);
+    const Plane fy = filterColumns(gRows, d);
     // Balanced kernels keep responses in [-1, 1]: the plain root cannot overflow.
     forPixels(fx.v.size(), [&](std::size_t i) { fx.v[i] = std::sqrt(fx.v[i] * fx.v[i] + fy.v[i] * fy.v[i]); });
     return fx;
-}
-
-// Achromatic channel in [0, 1] (relative luminance) from YCxCz's Y.
-Plane achromatic(const Plane& ycxczY) {
-    Plane out = ycxczY;
-    for (float& v : out.v) v = (v + 16) / 116;
-    return out;
 }
 
 std::string sizeText(const Image& img) { return std::to_string(img.width()) + "x" + std::to_string(img.height()); }
@@ -277,29 +327,38 @@ void checkInputs(const Image& img, double ppd, const char* role) {
         throw Error("FLIP: pixels per degree must be a positive number, not " + std::to_string(ppd));
 }
 
-// What the comparison needs of one image: its CSF-filtered colour as
-// CIELAB, and the edge and point magnitudes of its achromatic channel.
+// What the comparison needs of one image: its CSF-filtered colour (as
+// YCxCz; CIELAB per pixel where it is compared), and the edge and point
+// magnitudes of its achromatic channel.
 struct FlipSide {
-    std::vector<Vec3> lab;
+    std::array<Plane, 3> filtered;
     Plane edges, points;
 };
 
 FlipSide prepareSide(const Image& img, double ppd) {
-    const std::array<Plane, 3> c = toYcxcz(img);
-    const std::array<Plane, 3> filtered{csfFilter(c[0], kCsf[0], ppd), csfFilter(c[1], kCsf[1], ppd), csfFilter(c[2], kCsf[2], ppd)};
+    const DisplayPlanes c = toYcxcz(img);
     const FeatureKernels k = featureKernels(ppd);
-    const Plane y = achromatic(c[0]);
-    return {toHuntLab(filtered), featureMagnitude(y, k.edge, k.gauss), featureMagnitude(y, k.point, k.gauss)};
+    const Plane gRows = filterRows(c.achromatic, k.gauss);
+    return {{csfFilter(c.ycxcz[0], kCsf[0], ppd), csfFilter(c.ycxcz[1], kCsf[1], ppd), csfFilter(c.ycxcz[2], kCsf[2], ppd)},
+            featureMagnitude(c.achromatic, gRows, k.edge, k.gauss),
+            featureMagnitude(c.achromatic, gRows, k.point, k.gauss)};
 }
 
 }  // namespace
 
-struct FlipReference::Side : FlipSide {};
+// The reference keeps its colour as CIELAB, converted once.
+struct FlipReference::Side {
+    std::vector<Lab> lab;
+    Plane edges, points;
+};
 
 FlipReference::FlipReference(const Image& reference, double pixelsPerDegree)
     : width_(reference.width()), height_(reference.height()), ppd_(pixelsPerDegree) {
     checkInputs(reference, pixelsPerDegree, "reference");
-    side_ = std::make_unique<const Side>(Side{prepareSide(reference, pixelsPerDegree)});
+    FlipSide s = prepareSide(reference, pixelsPerDegree);
+    std::vector<Lab> lab(s.edges.v.size());
+    forPixels(lab.size(), [&](std::size_t i) { lab[i] = filteredLab(s.filtered, i); });
+    side_ = std::make_unique<const Side>(Side{std::move(lab), std::move(s.edges), std::move(s.points)});
 }
 
 FlipReference::~FlipReference() = default;
@@ -313,11 +372,11 @@ double FlipReference::compareInto(const Image& test, float* map) const {
         throw Error("FLIP: images differ in size: " + sizeText(test) + " vs " + std::to_string(width_) + "x" + std::to_string(height_));
     checkInputs(test, ppd_, "test");
     const FlipSide t = prepareSide(test, ppd_);
-    const FlipSide& r = *side_;
+    const Side& r = *side_;
     std::vector<double> rowSums(height_, 0.0);
     tbb::parallel_for(0, height_, [&](int y) {
         for (std::size_t i = std::size_t(y) * width_, end = i + width_; i < end; ++i) {
-            const double ec = static_cast<float>(remapColorError(hyab(t.lab[i], r.lab[i])));
+            const double ec = static_cast<float>(remapColorError(hyab(filteredLab(t.filtered, i), r.lab[i])));
             const double d = std::max(std::abs(t.edges.v[i] - r.edges.v[i]), std::abs(t.points.v[i] - r.points.v[i])) / std::numbers::sqrt2;
             const double ef = static_cast<float>(std::sqrt(std::min(d, 1.0)));  // q_f = 1/2
             const float e = std::pow(static_cast<float>(ec), static_cast<float>(1.0 - ef));  // float, as the map is

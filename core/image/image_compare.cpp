@@ -1,6 +1,7 @@
 #include "core/image/image_compare.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -32,20 +33,23 @@ double psnrFromMse(double mse) {
 // a two-pass sum does and sums of squares do not.
 struct Moments {
     double n = 0, ma = 0, mb = 0, aa = 0, bb = 0, ab = 0;
-    // count values down a column: a[i * strideA], b[i * strideB].
-    static Moments of(const float* a, std::size_t strideA, const float* b, std::size_t strideB, int count) {
+    // A block of cols x rows pixels: a[y * rowA + x * pixelA], b likewise.
+    static Moments ofBlock(const float* a, std::size_t pixelA, std::size_t rowA, const float* b, std::size_t pixelB,
+                           std::size_t rowB, int cols, int rows) {
         Moments m;
-        m.n = count;
-        for (int i = 0; i < count; ++i) m.ma += a[i * strideA], m.mb += b[i * strideB];
-        m.ma /= count, m.mb /= count;
-        for (int i = 0; i < count; ++i) {
-            const double da = a[i * strideA] - m.ma, db = b[i * strideB] - m.mb;
-            m.aa += da * da, m.bb += db * db, m.ab += da * db;
-        }
+        m.n = double(cols) * rows;
+        for (int y = 0; y < rows; ++y)
+            for (int x = 0; x < cols; ++x) m.ma += a[y * rowA + x * pixelA], m.mb += b[y * rowB + x * pixelB];
+        m.ma /= m.n, m.mb /= m.n;
+        for (int y = 0; y < rows; ++y)
+            for (int x = 0; x < cols; ++x) {
+                const double da = a[y * rowA + x * pixelA] - m.ma, db = b[y * rowB + x * pixelB] - m.mb;
+                m.aa += da * da, m.bb += db * db, m.ab += da * db;
+            }
         return m;
     }
-    // Columns of equal counts joined: the mean of their means, and each
-    // column's centred sums moved to that mean (the parallel axis theorem).
+    // Blocks of equal counts joined: the mean of their means, and each
+    // block's centred sums moved to that mean (the parallel axis theorem).
     static Moments join(const Moments* columns, int count) {
         Moments m;
         for (int i = 0; i < count; ++i) m.ma += columns[i].ma, m.mb += columns[i].mb;
@@ -68,25 +72,37 @@ double windowSsim(const Moments& m) {
     return ((2 * m.ma * m.mb + C1) * (2 * vab + C2)) / ((m.ma * m.ma + m.mb * m.mb + C1) * (vaa + vbb + C2));
 }
 
-// Mean SSIM over 8x8 windows (stride 4) of one channel pair. A row of
-// windows takes the moments of each pixel column over the window's height
-// once, then each window joins its columns'. Rows of windows run in
-// parallel, each summed alone, then the rows in order: the same on any
-// thread count.
+// Mean SSIM over 8x8 windows (stride 4) of one channel pair. A window is
+// 2x2 blocks of 4x4 pixels (one block across, or down, where the image is
+// narrower than a window), so each block's moments are taken once and
+// joined into the four windows that overlap it. Bands of blocks, then rows
+// of windows, run in parallel, each row summed alone, then the rows in
+// order: the same on any thread count.
 double channelSsim(const Image& a, int ca, const Image& b, int cb) {
     constexpr int kWin = 8, kStride = 4;
     const int w = a.width(), h = a.height();
+    if (w == 0 || h == 0) return 1.0;  // nothing differs
     const int winX = std::min(kWin, w), winY = std::min(kWin, h);
     const int rows = (h - winY) / kStride + 1, perRow = (w - winX) / kStride + 1;
-    if (w == 0 || h == 0) return 1.0;  // nothing differs
-    const std::size_t strideA = std::size_t(w) * a.channelCount(), strideB = std::size_t(w) * b.channelCount();
+    const int blockW = winX == kWin ? kStride : winX, blockH = winY == kWin ? kStride : winY;
+    const int acrossWindow = winX / blockW, downWindow = winY / blockH;
+    const int bands = rows + downWindow - 1, perBand = perRow + acrossWindow - 1;
+    const std::size_t na = a.channelCount(), nb = b.channelCount();
+    std::vector<Moments> blocks(std::size_t(bands) * perBand);
+    tbb::parallel_for(0, bands, [&](int band) {
+        for (int j = 0; j < perBand; ++j)
+            blocks[std::size_t(band) * perBand + j] =
+                Moments::ofBlock(a.pixel(j * blockW, band * blockH) + ca, na, std::size_t(w) * na,
+                                 b.pixel(j * blockW, band * blockH) + cb, nb, std::size_t(w) * nb, blockW, blockH);
+    });
     std::vector<double> rowSums(rows, 0.0);
     tbb::parallel_for(0, rows, [&](int row) {
-        const int y0 = row * kStride;
-        std::vector<Moments> columns(w);
-        for (int x = 0; x < w; ++x) columns[x] = Moments::of(a.pixel(x, y0) + ca, strideA, b.pixel(x, y0) + cb, strideB, winY);
         for (int i = 0; i < perRow; ++i) {
-            rowSums[row] += windowSsim(Moments::join(&columns[i * kStride], winX));
+            std::array<Moments, 4> parts;
+            int n = 0;
+            for (int dy = 0; dy < downWindow; ++dy)
+                for (int dx = 0; dx < acrossWindow; ++dx) parts[n++] = blocks[std::size_t(row + dy) * perBand + i + dx];
+            rowSums[row] += windowSsim(Moments::join(parts.data(), n));
         }
     });
     double sum = 0;

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/base/error.hpp"
 #include "core/image/image_compare.hpp"
@@ -61,31 +63,34 @@ TEST(ImageCompare, NonFiniteCountsAsInfiniteErrorAndSizesMustMatch) {
 
 namespace {
 
-// SSIM as its definition reads: each 8x8 window (stride 4) summed twice, in long double.
+// SSIM as its definition reads: each 8x8 window (stride 4; as wide or as
+// tall as the image where it is smaller) summed twice, in long double.
 double directSsim(const Image& a, const Image& b, int c) {
     const long double C1 = 0.01L * 0.01L, C2 = 0.03L * 0.03L;
+    const int ww = std::min(8, a.width()), wh = std::min(8, a.height());
+    const long double n = ww * wh, dof = n > 1 ? n - 1 : 1;
     long double sum = 0;
     int windows = 0;
-    for (int y0 = 0; y0 + 8 <= a.height(); y0 += 4)
-        for (int x0 = 0; x0 + 8 <= a.width(); x0 += 4, ++windows) {
+    for (int y0 = 0; y0 + wh <= a.height(); y0 += 4)
+        for (int x0 = 0; x0 + ww <= a.width(); x0 += 4, ++windows) {
             long double ma = 0, mb = 0, vaa = 0, vbb = 0, vab = 0;
-            for (int y = y0; y < y0 + 8; ++y)
-                for (int x = x0; x < x0 + 8; ++x) ma += a.at(x, y, c), mb += b.at(x, y, c);
-            ma /= 64, mb /= 64;
-            for (int y = y0; y < y0 + 8; ++y)
-                for (int x = x0; x < x0 + 8; ++x) {
+            for (int y = y0; y < y0 + wh; ++y)
+                for (int x = x0; x < x0 + ww; ++x) ma += a.at(x, y, c), mb += b.at(x, y, c);
+            ma /= n, mb /= n;
+            for (int y = y0; y < y0 + wh; ++y)
+                for (int x = x0; x < x0 + ww; ++x) {
                     const long double da = a.at(x, y, c) - ma, db = b.at(x, y, c) - mb;
                     vaa += da * da, vbb += db * db, vab += da * db;
                 }
-            vaa /= 63, vbb /= 63, vab /= 63;
+            vaa /= dof, vbb /= dof, vab /= dof;
             sum += ((2 * ma * mb + C1) * (2 * vab + C2)) / ((ma * ma + mb * mb + C1) * (vaa + vbb + C2));
         }
     return double(sum / windows);
 }
 
 // Values around `offset` with noise of `spread`; the second image adds its own noise.
-std::pair<Image, Image> noisyPair(float offset, float spread) {
-    Image a = Image::rgba(37, 29), b = Image::rgba(37, 29);
+std::pair<Image, Image> noisyPair(float offset, float spread, int w = 37, int h = 29) {
+    Image a = Image::rgba(w, h), b = Image::rgba(w, h);
     for (std::size_t i = 0; i < a.data().size(); ++i) {
         const float u = float((i * 2654435761u) % 1000) / 1000, v = float((i * 40503u + 7) % 997) / 997;
         a.data()[i] = offset + spread * u;
@@ -96,9 +101,10 @@ std::pair<Image, Image> noisyPair(float offset, float spread) {
 
 }  // namespace
 
-// The windows' moments are joined column by column; SSIM stays the
+// The windows' moments are joined from 4x4 blocks; SSIM stays the
 // definition's, also where values of 1e6 differ by 1e-1 (HDR highlights),
-// where sums of squares would lose every digit.
+// where sums of squares would lose every digit, and on images narrower or
+// shorter than a window.
 TEST(ImageCompare, SsimMatchesItsDefinitionAtAnyOffset) {
     for (const auto& [offset, spread] : {std::pair{0.0f, 1.0f}, std::pair{0.5f, 1e-3f}, std::pair{1e6f, 0.1f}, std::pair{-3e4f, 50.0f}}) {
         const auto [a, b] = noisyPair(offset, spread);
@@ -113,5 +119,10 @@ TEST(ImageCompare, SsimMatchesItsDefinitionAtAnyOffset) {
             EXPECT_EQ(r->overall.rmse, c.overall.rmse);
             EXPECT_EQ(r->overall.relMse, c.overall.relMse);
         }
+    }
+    for (const auto& [w, h] : {std::pair{5, 29}, std::pair{37, 6}, std::pair{3, 2}, std::pair{8, 8}, std::pair{12, 9}}) {
+        const auto [a, b] = noisyPair(0.25f, 0.5f, w, h);
+        const ImageComparison c = compareImages(a, b);
+        for (int ch = 0; ch < 4; ++ch) EXPECT_NEAR(c.channels[ch].ssim, directSsim(a, b, ch), 1e-9) << w << "x" << h << " channel " << ch;
     }
 }
