@@ -2,8 +2,12 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
+
+#include "core/base/large_buffer.hpp"
 
 namespace weft {
 
@@ -30,19 +34,91 @@ std::vector<std::uint8_t> discontinuityBuffer(const GBuffer& g, const Discontinu
 
 namespace {
 
+// The plain Gaussian over n contiguous floats whose neighbours k pixels
+// away lie k * tap floats away, for pixels whose walk reaches the full
+// radius both ways: the walk's own sums, in its order (centre, +1..+r,
+// -1..-r, times 1 / the weights' sum), so the result is the same to the
+// bit; over a run of pixels at once, it vectorises. Also compiled for
+// AVX2, chosen at load time (no FMA either way).
+[[gnu::target_clones("avx2", "default")]] void plainRun(const float* src, std::ptrdiff_t tap, const float* weights,
+                                                       int radius, float inv, float* out, int n) {
+    for (int i = 0; i < n; ++i) out[i] = weights[0] * src[i];
+    for (int k = 1; k <= radius; ++k)
+        for (int i = 0; i < n; ++i) out[i] += weights[k] * src[i + k * tap];
+    for (int k = 1; k <= radius; ++k)
+        for (int i = 0; i < n; ++i) out[i] += weights[k] * src[i - k * tap];
+    for (int i = 0; i < n; ++i) out[i] *= inv;
+}
+
+constexpr std::size_t kPlainPiece = 1024;  // floats
+
+// Per pixel of row y: 1 where the walk along the pass reaches the full
+// radius both ways (inside the image, no discontinuity on the way), so
+// the plain Gaussian gives its result.
+std::vector<std::uint8_t> fullWalks(const std::vector<std::uint8_t>& disc, int width, int height, int y, int radius, bool alongX) {
+    std::vector<std::uint8_t> full(std::size_t(width), 0);
+    const std::uint8_t* row = disc.data() + std::size_t(y) * width;
+    if (alongX) {
+        // Steps cross the marks at x - r .. x + r - 1: a running count over that window.
+        int marks = 0;
+        for (int x = 0; x < std::min(2 * radius, width); ++x) marks += row[x];
+        for (int x = radius; x + radius < width; ++x) {
+            full[std::size_t(x)] = marks == 0;
+            marks += row[x + radius] - row[x - radius];
+        }
+        return full;
+    }
+    if (y < radius || y + radius >= height) return full;
+    std::vector<std::uint8_t> marked(std::size_t(width), 0);
+    for (int r = y - radius; r < y + radius; ++r) {
+        const std::uint8_t* m = disc.data() + std::size_t(r) * width;
+        for (int x = 0; x < width; ++x) marked[std::size_t(x)] |= m[x];
+    }
+    for (int x = 0; x < width; ++x) full[std::size_t(x)] = !marked[std::size_t(x)];
+    return full;
+}
+
 // One direction of the separable blur: along x or along y. C channels of
 // each `stride` floats (C fixed at compile time for the common counts).
+// Pixels whose walk reaches the full radius both ways take the plain
+// Gaussian over runs of pixels (all `stride` floats, into a row buffer,
+// of which the C channels are kept); the others walk.
 template <int C>
 void blurPass(const float* src, float* dst, int width, int height, int stride, int channels,
               const std::vector<std::uint8_t>& disc, const std::vector<float>& weights, bool alongX) {
     const int radius = int(weights.size()) - 1;
     const int nc = C > 0 ? C : channels;
+    float wsumFull = weights[0];
+    for (int k = 1; k <= radius; ++k) wsumFull += weights[std::size_t(k)];
+    for (int k = 1; k <= radius; ++k) wsumFull += weights[std::size_t(k)];
+    const float invFull = 1.0f / wsumFull;
+    const std::ptrdiff_t tap = alongX ? stride : std::ptrdiff_t(width) * stride;
     tbb::parallel_for(0, height, [&](int y) {
         float acc[64];
         const int len = alongX ? width : height;
+        const std::vector<std::uint8_t> full = fullWalks(disc, width, height, y, radius, alongX);
+        FreshBuffer<float> plain(std::size_t(width) * stride);  // written where `full` before it is read
+        for (int x0 = 0; x0 < width;) {
+            if (!full[std::size_t(x0)]) {
+                ++x0;
+                continue;
+            }
+            int x1 = x0;
+            while (x1 < width && full[std::size_t(x1)]) ++x1;
+            // In pieces that stay in the first-level cache across the taps.
+            const std::size_t at = (std::size_t(y) * width + x0) * stride, n = std::size_t(x1 - x0) * stride;
+            for (std::size_t i = 0; i < n; i += kPlainPiece)
+                plainRun(src + at + i, tap, weights.data(), radius, invFull, plain.data() + std::size_t(x0) * stride + i,
+                         int(std::min(kPlainPiece, n - i)));
+            x0 = x1;
+        }
         for (int x = 0; x < width; ++x) {
-            const int pos = alongX ? x : y;
             const std::size_t base = std::size_t(y) * width + x;
+            if (full[std::size_t(x)]) {
+                for (int c = 0; c < nc; ++c) dst[base * stride + c] = plain[std::size_t(x) * stride + c];
+                continue;
+            }
+            const int pos = alongX ? x : y;
             const std::ptrdiff_t step = alongX ? 1 : width;  // pixels between neighbours
             auto at = [&](int k) { return std::size_t(std::ptrdiff_t(base) + (k - pos) * step); };
             float wsum = weights[0];

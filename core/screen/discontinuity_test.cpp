@@ -2,7 +2,11 @@
 // not cross what it marks.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "core/screen/discontinuity.hpp"
 #include "core/base/rng.hpp"
@@ -110,4 +114,59 @@ TEST(Discontinuity, BlurReducesNoiseInsideARegion) {
     const double before = variance();
     discontinuityBlur(data, w, h, 1, disc, 2);
     EXPECT_LT(variance(), before / 4);
+}
+
+namespace {
+
+// The blur as section 4.5 reads: from each pixel, walk +1, +2, ... then
+// -1, -2, ... up to the radius, a step from q to q + 1 only when q is
+// not marked; Gaussian weights, normalised by those taken. Along x, then y.
+void walkedBlur(std::vector<float>& data, int w, int h, int stride, int channels, const std::vector<std::uint8_t>& disc, int radius) {
+    const float sigma = 0.5f * float(radius);
+    std::vector<float> weight(std::size_t(radius) + 1);
+    for (int k = 0; k <= radius; ++k) weight[std::size_t(k)] = std::exp(-0.5f * float(k * k) / (sigma * sigma));
+    for (bool alongX : {true, false}) {
+        const std::vector<float> src = data;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const int pos = alongX ? x : y, len = alongX ? w : h;
+                auto index = [&](int q) { return alongX ? std::size_t(y) * w + q : std::size_t(q) * w + x; };
+                std::vector<float> acc(static_cast<std::size_t>(channels), 0.0f);
+                float wsum = weight[0];
+                for (int c = 0; c < channels; ++c) acc[c] = weight[0] * src[index(pos) * stride + c];
+                auto add = [&](int q, float wk) {
+                    wsum += wk;
+                    for (int c = 0; c < channels; ++c) acc[c] += wk * src[index(q) * stride + c];
+                };
+                for (int k = 1; k <= radius && pos + k < len && !disc[index(pos + k - 1)]; ++k) add(pos + k, weight[std::size_t(k)]);
+                for (int k = 1; k <= radius && pos - k >= 0 && !disc[index(pos - k)]; ++k) add(pos - k, weight[std::size_t(k)]);
+                for (int c = 0; c < channels; ++c) data[index(pos) * stride + c] = acc[c] * (1.0f / wsum);
+            }
+    }
+}
+
+}  // namespace
+
+// Pixels far from marks take a vectorised plain Gaussian over runs of
+// pixels; it must give the walk's result to the bit, next to marks, at the
+// borders and across channel counts, strides and radii.
+TEST(Discontinuity, BlurEqualsTheWalkToTheBit) {
+    const int w = 61, h = 47;
+    GBuffer g = plane(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if ((x > 30 && (x * 13 + y * 7) % 37 == 0) || (y == 20 && x < 12)) g.at(x, y).normal = Vec3f(0, 1, 0);
+    const auto disc = discontinuityBuffer(g, {});
+    for (const auto& [stride, channels] : {std::pair{12, 6}, std::pair{12, 12}, std::pair{6, 6}, std::pair{3, 2}, std::pair{1, 1}})
+        for (int radius : {1, 4, 8, 40}) {
+            std::vector<float> data(std::size_t(w) * h * stride);
+            Rng rng(std::uint64_t(radius * 100 + stride));
+            for (float& v : data) v = rng.uniform();
+            std::vector<float> walked = data;
+            discontinuityBlur(data.data(), w, h, stride, channels, disc, radius);
+            walkedBlur(walked, w, h, stride, channels, disc, radius);
+            int differ = 0;
+            for (std::size_t i = 0; i < data.size(); ++i) differ += data[i] != walked[i];
+            EXPECT_EQ(differ, 0) << "stride " << stride << " channels " << channels << " radius " << radius;
+        }
 }
