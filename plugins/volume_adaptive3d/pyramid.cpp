@@ -112,7 +112,7 @@ template <bool kOne, bool kSurfaces>
     const float fx = (x & 1) ? 0.25f : 0.75f, fy = (y & 1) ? 0.25f : 0.75f;  // weight of the second parent
     const int xa = std::clamp(x0, 0, cw - 1), xb = std::clamp(x0 + 1, 0, cw - 1);
     const int ya = std::clamp(y0, 0, ch - 1), yb = std::clamp(y0 + 1, 0, ch - 1);
-    auto blend = [&](const auto* v) {  // data and distances (float), emission (Vec3f)
+    auto blend = [&](const auto* v) __attribute__((always_inline)) {  // data and distances (float), emission (Vec3f)
         const auto top = (1 - fx) * v[ya * cw + xa] + fx * v[ya * cw + xb];
         const auto bottom = (1 - fx) * v[yb * cw + xa] + fx * v[yb * cw + xb];
         return (1 - fy) * top + fy * bottom;
