@@ -7,10 +7,6 @@
 
 namespace weft {
 
-namespace {
-constexpr int kTableSize = 4096;
-}
-
 TransferFunction::TransferFunction(double rangeMin, double rangeMax, std::vector<TfPoint> points)
     : rangeMin_(rangeMin), rangeMax_(rangeMax), points_(std::move(points)) {
     if (points_.empty()) throw Error("transfer function: needs at least one point");
@@ -48,18 +44,6 @@ void TransferFunction::buildTable() {
     for (int i = 0; i <= kTableSize; ++i) visibleBefore_[i + 1] = visibleBefore_[i] + (table_[i].extinction != 0.0f);
     tableScale_ = float(kTableSize / (rangeMax_ - rangeMin_));
     tableOffset_ = float(-rangeMin_ * kTableSize / (rangeMax_ - rangeMin_));
-}
-
-TfSample TransferFunction::lookup(float value) const {
-    float x = value * tableScale_ + tableOffset_;
-    if (!(x > 0.0f)) x = 0.0f;  // also maps NaN to 0
-    if (x >= float(kTableSize)) return table_[kTableSize];
-    const int i = int(x);
-    const float t = x - float(i);
-    const TfSample& a = table_[i];
-    const TfSample& b = table_[i + 1];
-    return {a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b),
-            a.extinction + t * (b.extinction - a.extinction)};
 }
 
 bool TransferFunction::transparentOver(float lo, float hi) const {

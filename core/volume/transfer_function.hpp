@@ -34,8 +34,19 @@ public:
     double normalize(double value) const;
     // Exact piecewise-linear evaluation at s in [0, 1] (double precision).
     TfPoint atS(double s) const;
-    // Fast lookup through a 4096-entry table, for inner loops.
-    TfSample lookup(float value) const;
+    // Fast lookup through a 4096-entry table, for inner loops (defined
+    // here so that every sample loop inlines it).
+    TfSample lookup(float value) const {
+        float x = value * tableScale_ + tableOffset_;
+        if (!(x > 0.0f)) x = 0.0f;  // also maps NaN to 0
+        if (x >= float(kTableSize)) return table_[kTableSize];
+        const int i = int(x);
+        const float t = x - float(i);
+        const TfSample& a = table_[i];
+        const TfSample& b = table_[i + 1];
+        return {a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b),
+                a.extinction + t * (b.extinction - a.extinction)};
+    }
     // Smallest and largest extinction over the data values [lo, hi]: exact,
     // since extinction is piecewise linear in s (ends and control points).
     std::array<double, 2> extinctionBounds(double lo, double hi) const;
@@ -50,6 +61,7 @@ public:
     static TransferFunction defaultFor(double minValue, double maxValue);
 
 private:
+    static constexpr int kTableSize = 4096;
     void buildTable();
     double rangeMin_ = 0, rangeMax_ = 1;
     std::vector<TfPoint> points_;
