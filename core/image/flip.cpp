@@ -53,6 +53,12 @@ Mat3 mul(const Mat3& a, const Mat3& b) {
     return r;
 }
 
+Vec3 mul(const Mat3& m, const Vec3& v) {
+    Vec3 r{};
+    for (int i = 0; i < 3; ++i) r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    return r;
+}
+
 Mat3 diagonal(const Vec3& d) { return {{{d[0], 0, 0}, {0, d[1], 0}, {0, 0, d[2]}}}; }
 
 // The XYZ of RGB 1, 1, 1: XYZ is taken relative to it.
@@ -100,10 +106,7 @@ const Affine3& rgbToYcxcz() {
 const Affine3& ycxczToRgb() {
     static const Vec3 w = whiteXyz();
     static const Mat3 toRgb = mul(kXyzToRgb, diagonal(w));
-    static const Affine3 a(mul(toRgb, kYcxczToRelXyz),
-                           {toRgb[0][0] * kYcxczToRelXyzOffset[0] + toRgb[0][1] * kYcxczToRelXyzOffset[1] + toRgb[0][2] * kYcxczToRelXyzOffset[2],
-                            toRgb[1][0] * kYcxczToRelXyzOffset[0] + toRgb[1][1] * kYcxczToRelXyzOffset[1] + toRgb[1][2] * kYcxczToRelXyzOffset[2],
-                            toRgb[2][0] * kYcxczToRelXyzOffset[0] + toRgb[2][1] * kYcxczToRelXyzOffset[1] + toRgb[2][2] * kYcxczToRelXyzOffset[2]});
+    static const Affine3 a(mul(toRgb, kYcxczToRelXyz), mul(toRgb, kYcxczToRelXyzOffset));
     return a;
 }
 
