@@ -152,7 +152,8 @@ static LightCacheSettings cacheSettings(const ScatterParams& p, const ScatterVol
 void ScatterTracer::buildCaches(RenderContext& ctx) {
     ScopedTimer timer(ctx.timings, "light_cache");
     std::int64_t voxels = 0;
-    for (const ScatterVolume& v : volumes_) cacheReaching_.push_back(VisibleBlocks::reaching(*v.volume->grid, float(params_.cutoff)));
+    if (!params_.lights.empty())  // the leaps serve the lights' marches only: none without a point or directional light
+        for (const ScatterVolume& v : volumes_) cacheReaching_.push_back(VisibleBlocks::reaching(*v.volume->grid, float(params_.cutoff)));
     for (const DirectionalOrPointLight& light : params_.lights)
         for (const ScatterVolume& receiver : volumes_) {
             for (std::size_t o = 0; o < volumes_.size(); ++o) {
