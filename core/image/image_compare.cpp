@@ -50,12 +50,12 @@ struct Moments {
     }
     // Blocks of equal counts joined: the mean of their means, and each
     // block's centred sums moved to that mean (the parallel axis theorem).
-    static Moments join(const Moments* columns, int count) {
+    static Moments join(const Moments* blocks, int count) {
         Moments m;
-        for (int i = 0; i < count; ++i) m.ma += columns[i].ma, m.mb += columns[i].mb;
+        for (int i = 0; i < count; ++i) m.ma += blocks[i].ma, m.mb += blocks[i].mb;
         m.ma /= count, m.mb /= count;
         for (int i = 0; i < count; ++i) {
-            const Moments& c = columns[i];
+            const Moments& c = blocks[i];
             const double da = c.ma - m.ma, db = c.mb - m.mb;
             m.aa += c.aa + c.n * da * da, m.bb += c.bb + c.n * db * db, m.ab += c.ab + c.n * da * db;
             m.n += c.n;
