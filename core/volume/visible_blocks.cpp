@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/volume/leaf_sampler.hpp"  // floorToInt
+#include "core/volume/tiles_where.hpp"
 
 namespace weft {
 
@@ -111,41 +112,6 @@ AxisBits reachingBits(const openvdb::FloatTree::LeafNodeType& leaf, float cutoff
     return out;
 }
 
-// The tiles of one node (or the root) at or above the cutoff: active ones
-// only, or every one. A node's own iterators read its table directly; the
-// tree's value iterator costs far more per entry, and a production grid's
-// internal nodes hold millions of (mostly background) tile entries.
-template <class Node>
-void addTilesReaching(const Node& node, float cutoff, bool activeOnly, std::vector<openvdb::CoordBBox>& out) {
-    const auto add = [&](const auto& it) {
-        if (*it >= cutoff) out.push_back(openvdb::CoordBBox::createCube(it.getCoord(), int(Node::ChildNodeType::DIM)));
-    };
-    if (activeOnly)
-        for (auto it = node.cbeginValueOn(); it; ++it) add(it);
-    else
-        for (auto it = node.cbeginValueAll(); it; ++it) add(it);
-}
-
-std::vector<openvdb::CoordBBox> tilesReaching(const openvdb::FloatTree& tree, float cutoff, bool activeOnly) {
-    using Lower = openvdb::FloatTree::RootNodeType::ChildNodeType::ChildNodeType;
-    using Upper = openvdb::FloatTree::RootNodeType::ChildNodeType;
-    std::vector<const Lower*> lower;
-    std::vector<const Upper*> upper;
-    tree.getNodes(lower);
-    tree.getNodes(upper);
-    std::vector<std::vector<openvdb::CoordBBox>> found(lower.size() + upper.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, found.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            if (i < lower.size()) addTilesReaching(*lower[i], cutoff, activeOnly, found[i]);
-            else addTilesReaching(*upper[i - lower.size()], cutoff, activeOnly, found[i]);
-        }
-    });
-    std::vector<openvdb::CoordBBox> tiles;
-    addTilesReaching(tree.root(), cutoff, activeOnly, tiles);
-    for (const auto& f : found) tiles.insert(tiles.end(), f.begin(), f.end());
-    return tiles;
-}
-
 }  // namespace
 
 std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid& grid, float cutoff, Within within,
@@ -162,7 +128,8 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::reaching(const openvdb::FloatGrid&
     // Cells [c, c + 1) reach the cutoff for c in [voxel - 1, voxel] on each
     // axis: a leaf's reaching voxels [lo, hi] make the cells [lo - 1, hi],
     // and a tile's [min - 1, max].
-    const std::vector<openvdb::CoordBBox> tiles = tilesReaching(grid.tree(), cutoff, within == Within::ActiveBlocks);
+    const std::vector<openvdb::CoordBBox> tiles =
+        tilesWhere(grid.tree(), within == Within::ActiveBlocks, [cutoff](float v) { return v >= cutoff; });
     openvdb::CoordBBox box;
     for (std::size_t i = 0; i < leaves.size(); ++i) {
         if (bits[i].none()) continue;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/volume/leaf_region.hpp"
+#include "core/volume/tiles_where.hpp"
 
 namespace weft {
 
@@ -141,15 +142,12 @@ openvdb::FloatGrid::Ptr visibleCells(const openvdb::FloatGrid& grid, const Trans
     // Tiles hold one value: a visible one marks its box and, for the cells
     // that straddle into it from below, one voxel more on the low sides.
     // Filled after the leaves, which it may cover: the union either way.
-    auto tiles = grid.tree().cbeginValueAll();
-    tiles.setMaxDepth(openvdb::FloatTree::ValueAllCIter::LEAF_DEPTH - 1);
-    for (; tiles; ++tiles) {
-        const Range r = rangeOf(*tiles);
-        if (tf.transparentOver(r.lo, r.hi)) continue;
-        openvdb::CoordBBox box;
-        tiles.getBoundingBox(box);
+    const auto visibleTile = [&](float v) {
+        const Range r = rangeOf(v);
+        return !tf.transparentOver(r.lo, r.hi);
+    };
+    for (const openvdb::CoordBBox& box : tilesWhere(grid.tree(), false, visibleTile))
         cells->tree().fill(openvdb::CoordBBox(box.min().offsetBy(-1), box.max()), 1.0f, true);
-    }
     return cells;
 }
 
