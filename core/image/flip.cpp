@@ -29,8 +29,6 @@ struct Plane {
     int w = 0, h = 0;
     FreshBuffer<float> v;
     Plane(int width, int height) : w(width), h(height), v(static_cast<std::size_t>(width) * height) {}
-    float& at(int x, int y) { return v[static_cast<std::size_t>(y) * w + x]; }
-    float at(int x, int y) const { return v[static_cast<std::size_t>(y) * w + x]; }
 };
 
 using Kernel = std::vector<double>;  // odd length, centred on the middle tap
