@@ -4,6 +4,7 @@
   /usr/bin/python3 bench/hwsim_calibrate.py --driver llvmpipe     # runs weft_gl_probe on Mesa llvmpipe
   /usr/bin/python3 bench/hwsim_calibrate.py --driver softpipe
   /usr/bin/python3 bench/hwsim_calibrate.py --measured h200.json --profile nvidia-h200 --base modern-desktop
+  /usr/bin/python3 bench/hwsim_calibrate.py --measured a.json,b.json,c.json --profile mesa-softpipe
 
 Times come from weft_gl_probe (median ms per replay, size and variant: the
 process's CPU time for Mesa's software drivers, wall time otherwise),
@@ -62,6 +63,37 @@ def run_probe(args):
         if args.save_measured:
             atomic_write(args.save_measured, json.dumps(measured, indent=1) + "\n")
         return measured
+
+
+def read_measured(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        fail(f"cannot read --measured {path}: {e}")
+
+
+def merged(runs):
+    """Several probe processes as one: each variant's time the median of the
+    processes' medians. A software GL's time for one variant can sit 20-60%
+    high for a whole process (buffers' placement in the caches), so one
+    process is not enough to calibrate on."""
+    if len(runs) == 1:
+        return runs[0]
+    out = dict(runs[0], results=[])
+    for m in runs[0]["results"]:
+        key = (m["replay"], m["size"], m["variant"])
+        same = [r for run in runs for r in run["results"] if (r["replay"], r["size"], r["variant"]) == key]
+        if len(same) != len(runs):
+            fail(f"{key[0]} {key[1]} {key[2]} is not in every --measured file")
+        row = dict(m)
+        for clock, runs_key in (("cpu_ms", "cpu_ms_runs"), ("gpu_ms", "gpu_ms_runs"), ("median_ms", "wall_ms")):
+            values = [r.get(clock) for r in same]
+            if all(v is not None for v in values):
+                row[clock] = float(np.median(values))
+                row[runs_key] = values  # the processes' medians: the spread column compares processes
+        out["results"].append(row)
+    return out
 
 
 def hwsim_counts(weft, profile, replay, size, params):
@@ -195,7 +227,7 @@ def write_record(profile, measured, rows, command, clock):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--driver", choices=sorted(DRIVER_PROFILE), help="measure with this Mesa driver now")
-    ap.add_argument("--measured", help="a weft_gl_probe --out file measured elsewhere (needs --profile)")
+    ap.add_argument("--measured", help="weft_gl_probe --out files measured elsewhere, comma list: the median of the processes (needs --profile)")
     ap.add_argument("--profile", help="profile to calibrate (default: the driver's)")
     ap.add_argument("--base", help="for a --profile without a file: the profile whose behaviour keys it copies")
     ap.add_argument("--sizes", default="512,1024")
@@ -216,11 +248,7 @@ def main():
         fail("--measured needs --profile NAME")
     path = profile_path(profile, args.base)
     if args.measured:
-        try:
-            with open(args.measured) as f:
-                measured = json.load(f)
-        except (OSError, ValueError) as e:
-            fail(f"cannot read --measured {args.measured}: {e}")
+        measured = merged([read_measured(path) for path in args.measured.split(",")])
     else:
         measured = run_probe(args)
     clock = clock_of(measured, args.clock)
@@ -232,7 +260,7 @@ def main():
     print("ns per count: " + ", ".join(f"{t} {v:.4g}" for t, v in ns_per.items()))
     if args.dry_run:
         return
-    source = f"--driver {args.driver}" if args.driver else f"--measured {os.path.basename(args.measured)}"
+    source = f"--driver {args.driver}" if args.driver else "--measured " + ",".join(os.path.basename(p) for p in args.measured.split(","))
     command = f"bench/hwsim_calibrate.py {source} --profile {profile}"
     when = datetime.date.today().isoformat()
     write_profile(path, f"measured {when} ({clock} time) on {measured.get('renderer', '?')} by {command}", ns_per)

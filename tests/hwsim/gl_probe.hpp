@@ -38,9 +38,19 @@ struct Report {
     std::vector<ImageCheck> images;
 };
 
-// prepare() runs untimed (clears, masks); passes() is timed from glFinish to
-// glFinish, `warmup` times unrecorded, then `repeats` times.
-Measurement measure(const Options& o, const std::function<void()>& prepare, const std::function<void()>& passes);
+// One variant of a replay: prepare() runs untimed (clears, masks), passes()
+// is timed from glFinish to glFinish, after() (optional) runs untimed once
+// after its last timed run (reading the image back).
+struct Variant {
+    std::string label;
+    std::function<void()> prepare, passes, after;
+};
+
+// Times the variants in turn, one run of each per round: `warmup` rounds
+// unrecorded, then `repeats` rounds. A drift of the machine (a software GL's
+// memory settling, other work) then spreads over every variant instead of
+// landing on whichever ran first. Measurements in the variants' order.
+std::vector<Measurement> measureInTurn(const Options& o, const std::vector<Variant>& variants);
 bool timerQueries();
 
 // A program drawing pixel rectangles (uniforms rect = x0 y0 x1 y1, target, depth).

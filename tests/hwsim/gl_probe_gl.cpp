@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <ctime>
 
 #include "tests/hwsim/gl_probe.hpp"
@@ -44,38 +45,47 @@ double cpuNow() {
 
 }  // namespace
 
-Measurement measure(const Options& o, const std::function<void()>& prepare, const std::function<void()>& passes) {
-    Measurement m;
-    std::vector<double> gpu, cpu;
+std::vector<Measurement> measureInTurn(const Options& o, const std::vector<Variant>& variants) {
+    std::vector<Measurement> out(variants.size());
+    std::vector<std::vector<double>> gpu(variants.size());
     GLuint query = 0;
     if (timerQueries()) glGenQueries(1, &query);
-    for (int run = 0; run < o.warmup + o.repeats; ++run) {
-        prepare();
-        glFinish();
-        const auto t0 = std::chrono::steady_clock::now();
-        const double c0 = cpuNow();
-        if (query) glBeginQuery(GL_TIME_ELAPSED, query);
-        passes();
-        if (query) glEndQuery(GL_TIME_ELAPSED);
-        glFinish();
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        const double cpuMs = cpuNow() - c0;
-        if (run < o.warmup) continue;
-        m.wallMs.push_back(ms);
-        cpu.push_back(cpuMs);
-        if (query) {
-            GLuint64 ns = 0;
-            glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
-            gpu.push_back(double(ns) * 1e-6);
+    const int rounds = o.warmup + o.repeats;
+    for (int run = 0; run < rounds; ++run) {
+        for (std::size_t v = 0; v < variants.size(); ++v) {
+            variants[v].prepare();
+            glFinish();
+            const auto t0 = std::chrono::steady_clock::now();
+            const double c0 = cpuNow();
+            if (query) glBeginQuery(GL_TIME_ELAPSED, query);
+            variants[v].passes();
+            if (query) glEndQuery(GL_TIME_ELAPSED);
+            glFinish();
+            const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            const double cpuMs = cpuNow() - c0;
+            if (run == rounds - 1 && variants[v].after) variants[v].after();
+            if (run < o.warmup) continue;
+            out[v].wallMs.push_back(ms);
+            out[v].cpuRuns.push_back(cpuMs);
+            if (query) {
+                GLuint64 ns = 0;
+                glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+                gpu[v].push_back(double(ns) * 1e-6);
+            }
         }
+        std::fprintf(stderr, "[probe] round %d of %d done%s\n", run + 1, rounds, run < o.warmup ? " (warm-up)" : "");
     }
     if (query) glDeleteQueries(1, &query);
     if (glGetError() != GL_NO_ERROR) gl::fail("a GL call failed while timing");
-    m.medianMs = median(m.wallMs);
-    m.gpuMs = query ? median(gpu) : -1;
-    m.cpuMs = median(cpu);
-    m.cpuRuns = cpu, m.gpuRuns = gpu;
-    return m;
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+        Measurement& m = out[v];
+        m.variant = variants[v].label;
+        m.medianMs = median(m.wallMs);
+        m.gpuMs = query ? median(gpu[v]) : -1;
+        m.cpuMs = median(m.cpuRuns);
+        m.gpuRuns = gpu[v];
+    }
+    return out;
 }
 
 GLuint rectProgram(const std::string& fragmentBody) {

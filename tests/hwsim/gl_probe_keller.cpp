@@ -120,9 +120,9 @@ void supersampled(const Gl& g) {
     glDisable(GL_BLEND);
 }
 
-void record(Report& r, Measurement m, int size, const char* label) {
-    m.replay = "keller.stipple", m.size = size, m.variant = label;
-    std::fprintf(stderr, "[probe] keller.stipple %d %-12s %9.2f ms\n", size, label, m.medianMs);
+void record(Report& r, Measurement m, int size) {
+    m.replay = "keller.stipple", m.size = size;
+    std::fprintf(stderr, "[probe] keller.stipple %d %-12s %9.2f ms\n", size, m.variant.c_str(), m.medianMs);
     r.measurements.push_back(std::move(m));
 }
 
@@ -130,8 +130,9 @@ void record(Report& r, Measurement m, int size, const char* label) {
 
 void runKeller(const Options& o, int size, Report& report) {
     const Gl g = setUp(size);
-    record(report, measure(o, [&] { prepare(g); }, [&] { interleaved(g); }), size, "interleaved");
-    record(report, measure(o, [&] { prepare(g); }, [&] { supersampled(g); }), size, "supersampled");
+    const std::vector<Variant> variants{{"interleaved", [&] { prepare(g); }, [&] { interleaved(g); }, nullptr},
+                                        {"supersampled", [&] { prepare(g); }, [&] { supersampled(g); }, nullptr}};
+    for (Measurement& m : measureInTurn(o, variants)) record(report, std::move(m), size);
     glBindVertexArray(0);
 }
 

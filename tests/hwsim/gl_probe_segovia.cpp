@@ -165,9 +165,9 @@ void passes(const Gl& g, const std::string& method, int n) {
     else lightPasses(g, method, n);
 }
 
-void record(Report& r, Measurement m, int size, const std::string& label) {
-    m.replay = "segovia.table1", m.size = size, m.variant = label;
-    std::fprintf(stderr, "[probe] segovia.table1 %d %-12s %9.2f ms\n", size, label.c_str(), m.medianMs);
+void record(Report& r, Measurement m, int size) {
+    m.replay = "segovia.table1", m.size = size;
+    std::fprintf(stderr, "[probe] segovia.table1 %d %-12s %9.2f ms\n", size, m.variant.c_str(), m.medianMs);
     r.measurements.push_back(std::move(m));
 }
 
@@ -179,19 +179,26 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
 
 void runSegovia(const Options& o, int size, Report& report) {
     const Gl g = setUp(o, size);
-    record(report, measure(o, [&] { prepare(g, "none", 1); }, [&] { passes(g, "none", 1); }), size, "none");
-    for (int n : {2, 4}) {
-        std::vector<float> first;
-        bool same = true;
-        for (const std::string method : {"stencil", "depth", "branch", "split"}) {
-            const std::string label = method + " " + std::to_string(n) + "x" + std::to_string(n);
-            record(report, measure(o, [&] { prepare(g, method, n); }, [&] { passes(g, method, n); }), size, label);
-            glBindFramebuffer(GL_FRAMEBUFFER, g.accumFbo);
-            const std::vector<float> image = readRed(size, size);
-            if (first.empty()) first = image;
-            else same = same && sameBits(first, image);
+    std::vector<Variant> variants{{"none", [&] { prepare(g, "none", 1); }, [&] { passes(g, "none", 1); }, nullptr}};
+    std::vector<float> images[2][4];  // [2x2, 4x4][method]: each variant's image after its last run
+    const char* methods[] = {"stencil", "depth", "branch", "split"};
+    for (int k = 0; k < 2; ++k) {
+        const int n = 2 << k;
+        for (int i = 0; i < 4; ++i) {
+            const std::string method = methods[i];
+            variants.push_back({method + " " + std::to_string(n) + "x" + std::to_string(n), [&g, method, n] { prepare(g, method, n); },
+                                [&g, method, n] { passes(g, method, n); }, [&g, &images, k, i, size] {
+                                    glBindFramebuffer(GL_FRAMEBUFFER, g.accumFbo);
+                                    images[k][i] = readRed(size, size);
+                                }});
         }
-        report.images.push_back({"segovia.table1", std::to_string(n) + "x" + std::to_string(n) + ": stencil, depth, branch and split images", size, same});
+    }
+    for (Measurement& m : measureInTurn(o, variants)) record(report, std::move(m), size);
+    for (int k = 0; k < 2; ++k) {
+        bool same = true;
+        for (int i = 1; i < 4; ++i) same = same && sameBits(images[k][0], images[k][i]);
+        const std::string n = std::to_string(2 << k) + "x" + std::to_string(2 << k);
+        report.images.push_back({"segovia.table1", n + ": stencil, depth, branch and split images", size, same});
     }
 }
 
