@@ -49,8 +49,9 @@ struct Variant {
 // Times the variants in turn, one run of each per round: `warmup` rounds
 // unrecorded, then `repeats` rounds. A drift of the machine (a software GL's
 // memory settling, other work) then spreads over every variant instead of
-// landing on whichever ran first. Measurements in the variants' order.
-std::vector<Measurement> measureInTurn(const Options& o, const std::vector<Variant>& variants);
+// landing on whichever ran first. Each variant's measurement goes into the
+// report (and a line to stderr), in the variants' order.
+void measureInTurn(const Options& o, const std::string& replay, int size, const std::vector<Variant>& variants, Report& report);
 bool timerQueries();
 
 // A program drawing pixel rectangles (uniforms rect = x0 y0 x1 y1, target, depth).

@@ -45,7 +45,7 @@ double cpuNow() {
 
 }  // namespace
 
-std::vector<Measurement> measureInTurn(const Options& o, const std::vector<Variant>& variants) {
+void measureInTurn(const Options& o, const std::string& replay, int size, const std::vector<Variant>& variants, Report& report) {
     std::vector<Measurement> out(variants.size());
     std::vector<std::vector<double>> gpu(variants.size());
     GLuint query = 0;
@@ -79,13 +79,14 @@ std::vector<Measurement> measureInTurn(const Options& o, const std::vector<Varia
     if (glGetError() != GL_NO_ERROR) gl::fail("a GL call failed while timing");
     for (std::size_t v = 0; v < variants.size(); ++v) {
         Measurement& m = out[v];
-        m.variant = variants[v].label;
+        m.replay = replay, m.size = size, m.variant = variants[v].label;
         m.medianMs = median(m.wallMs);
         m.gpuMs = query ? median(gpu[v]) : -1;
         m.cpuMs = median(m.cpuRuns);
         m.gpuRuns = gpu[v];
+        std::fprintf(stderr, "[probe] %s %d %-12s %9.2f ms\n", replay.c_str(), size, m.variant.c_str(), m.medianMs);
+        report.measurements.push_back(std::move(m));
     }
-    return out;
 }
 
 GLuint rectProgram(const std::string& fragmentBody) {

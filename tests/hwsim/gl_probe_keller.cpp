@@ -5,7 +5,6 @@
 // ("interleaved"), against n x n unmasked passes accumulated additively with
 // a depth clear before each ("supersampled"). The program loops
 // `program_cost` times, as the replay's cost units.
-#include <cstdio>
 
 #include "tests/hwsim/gl_probe.hpp"
 
@@ -120,19 +119,13 @@ void supersampled(const Gl& g) {
     glDisable(GL_BLEND);
 }
 
-void record(Report& r, Measurement m, int size) {
-    m.replay = "keller.stipple", m.size = size;
-    std::fprintf(stderr, "[probe] keller.stipple %d %-12s %9.2f ms\n", size, m.variant.c_str(), m.medianMs);
-    r.measurements.push_back(std::move(m));
-}
-
 }  // namespace
 
 void runKeller(const Options& o, int size, Report& report) {
     const Gl g = setUp(size);
     const std::vector<Variant> variants{{"interleaved", [&] { prepare(g); }, [&] { interleaved(g); }, nullptr},
                                         {"supersampled", [&] { prepare(g); }, [&] { supersampled(g); }, nullptr}};
-    for (Measurement& m : measureInTurn(o, variants)) record(report, std::move(m), size);
+    measureInTurn(o, "keller.stipple", size, variants, report);
     glBindVertexArray(0);
 }
 

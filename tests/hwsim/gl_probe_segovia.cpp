@@ -7,7 +7,6 @@
 // light with a `light_cost`-iteration loop the compiler cannot drop (its
 // result is scaled by a uniform zero). Stencil and depth masks are written
 // outside the timed region; split times its split and gather passes.
-#include <cstdio>
 #include <cstring>
 
 #include "tests/hwsim/gl_probe.hpp"
@@ -165,12 +164,6 @@ void passes(const Gl& g, const std::string& method, int n) {
     else lightPasses(g, method, n);
 }
 
-void record(Report& r, Measurement m, int size) {
-    m.replay = "segovia.table1", m.size = size;
-    std::fprintf(stderr, "[probe] segovia.table1 %d %-12s %9.2f ms\n", size, m.variant.c_str(), m.medianMs);
-    r.measurements.push_back(std::move(m));
-}
-
 bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
@@ -182,23 +175,23 @@ void runSegovia(const Options& o, int size, Report& report) {
     std::vector<Variant> variants{{"none", [&] { prepare(g, "none", 1); }, [&] { passes(g, "none", 1); }, nullptr}};
     std::vector<float> images[2][4];  // [2x2, 4x4][method]: each variant's image after its last run
     const char* methods[] = {"stencil", "depth", "branch", "split"};
+    const auto pattern = [](int n) { return std::to_string(n) + "x" + std::to_string(n); };
     for (int k = 0; k < 2; ++k) {
         const int n = 2 << k;
         for (int i = 0; i < 4; ++i) {
             const std::string method = methods[i];
-            variants.push_back({method + " " + std::to_string(n) + "x" + std::to_string(n), [&g, method, n] { prepare(g, method, n); },
+            variants.push_back({method + " " + pattern(n), [&g, method, n] { prepare(g, method, n); },
                                 [&g, method, n] { passes(g, method, n); }, [&g, &images, k, i, size] {
                                     glBindFramebuffer(GL_FRAMEBUFFER, g.accumFbo);
                                     images[k][i] = readRed(size, size);
                                 }});
         }
     }
-    for (Measurement& m : measureInTurn(o, variants)) record(report, std::move(m), size);
+    measureInTurn(o, "segovia.table1", size, variants, report);
     for (int k = 0; k < 2; ++k) {
         bool same = true;
         for (int i = 1; i < 4; ++i) same = same && sameBits(images[k][0], images[k][i]);
-        const std::string n = std::to_string(2 << k) + "x" + std::to_string(2 << k);
-        report.images.push_back({"segovia.table1", n + ": stencil, depth, branch and split images", size, same});
+        report.images.push_back({"segovia.table1", pattern(2 << k) + ": stencil, depth, branch and split images", size, same});
     }
 }
 
