@@ -6,8 +6,10 @@
   /usr/bin/python3 bench/hwsim_calibrate.py --measured h200.json --profile nvidia-h200 --base modern-desktop
   /usr/bin/python3 bench/hwsim_calibrate.py --measured a.json,b.json,c.json --profile mesa-softpipe
 
-Times come from weft_gl_probe (median ms per replay, size and variant: the
-process's CPU time for Mesa's software drivers, wall time otherwise),
+Times come from weft_gl_probe (each timed run of each replay, size and
+variant: the process's CPU time for Mesa's software drivers, GL_TIME_ELAPSED
+or wall time otherwise), a variant's time the fastest of its runs over every
+probe file given (--statistic median for the median),
 counts from `weft hwsim REPLAY --stats` at the same sizes and parameters. The
 cost terms (ns per count of a few counters, hwsim/cost_model.hpp) are fitted
 by non-negative least squares on relative errors, written into the profile's
@@ -29,7 +31,7 @@ from scipy.optimize import nnls
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PROFILES = os.path.join(ROOT, "hwsim", "profiles")
-TERMS = ["passes", "fragments.generated", "fragment_program.invocations", "fragment_program.cost"]
+TERMS = ["passes", "fragments.generated", "fragment_program.invocations", "fragment_program.cost", "texture.scattered_fetches"]
 BASELINE = {"segovia.table1": "none", "keller.stipple": "supersampled"}
 DRIVER_PROFILE = {"llvmpipe": "mesa-llvmpipe", "softpipe": "mesa-softpipe"}
 
@@ -73,13 +75,16 @@ def read_measured(path):
         fail(f"cannot read --measured {path}: {e}")
 
 
-def merged(runs):
-    """Several probe processes as one: each variant's time the median of the
-    processes' medians. A software GL's time for one variant can sit 20-60%
-    high for a whole process (buffers' placement in the caches), so one
-    process is not enough to calibrate on."""
-    if len(runs) == 1:
-        return runs[0]
+STATISTICS = {"min": min, "median": lambda v: float(np.median(v))}
+
+
+def merged(runs, statistic):
+    """Several probe processes as one: each variant's time the statistic
+    (min or median) of its runs in every process, pooled. A shared machine's
+    noise only ever adds time, and a software GL's time for one variant can
+    sit 20-60% high for a whole process (in 2 of 3 processes at 1024 on
+    softpipe, a different variant each time), so one process's median is not
+    enough to calibrate on: the fastest run is the least disturbed one."""
     out = dict(runs[0], results=[])
     for m in runs[0]["results"]:
         key = (m["replay"], m["size"], m["variant"])
@@ -88,10 +93,10 @@ def merged(runs):
             fail(f"{key[0]} {key[1]} {key[2]} is not in every --measured file")
         row = dict(m)
         for clock, runs_key in (("cpu_ms", "cpu_ms_runs"), ("gpu_ms", "gpu_ms_runs"), ("median_ms", "wall_ms")):
-            values = [r.get(clock) for r in same]
-            if all(v is not None for v in values):
-                row[clock] = float(np.median(values))
-                row[runs_key] = values  # the processes' medians: the spread column compares processes
+            pooled = [t for r in same for t in (r.get(runs_key) or [])]
+            if pooled and all(t is not None for t in pooled):
+                row[clock] = STATISTICS[statistic](pooled)
+                row[runs_key] = pooled
         out["results"].append(row)
     return out
 
@@ -167,8 +172,8 @@ def speedups(rows, ns_per):
         r["error_pct"] = 100.0 * (r["predicted_speedup"] / r["measured_speedup"] - 1)
 
 
-def print_table(rows, renderer, clock):
-    print(f"renderer: {renderer}; measured: median {clock} time; spread: (max - min) / median of the runs")
+def print_table(rows, renderer, clock, statistic):
+    print(f"renderer: {renderer}; measured: {statistic} {clock} time of the runs; spread: (max - min) / measured")
     print(f"{'replay':16s} {'size':>5s} {'variant':14s} {'measured ms':>12s} {'predicted ms':>12s} "
           f"{'meas. x':>8s} {'pred. x':>8s} {'error %':>8s} {'spread %':>8s}")
     for r in rows:
@@ -227,7 +232,7 @@ def write_record(profile, measured, rows, command, clock):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--driver", choices=sorted(DRIVER_PROFILE), help="measure with this Mesa driver now")
-    ap.add_argument("--measured", help="weft_gl_probe --out files measured elsewhere, comma list: the median of the processes (needs --profile)")
+    ap.add_argument("--measured", help="weft_gl_probe --out files measured elsewhere, comma list: their runs pooled (needs --profile)")
     ap.add_argument("--profile", help="profile to calibrate (default: the driver's)")
     ap.add_argument("--base", help="for a --profile without a file: the profile whose behaviour keys it copies")
     ap.add_argument("--sizes", default="512,1024")
@@ -239,6 +244,8 @@ def main():
     ap.add_argument("--clock", choices=["auto", "cpu", "gpu", "wall"], default="auto",
                     help="measured time: process CPU, GL_TIME_ELAPSED or wall (auto: cpu for llvmpipe/softpipe, else gpu if timed)")
     ap.add_argument("--save-measured", help="with --driver: also keep the probe's output here (for --measured later)")
+    ap.add_argument("--statistic", choices=sorted(STATISTICS), default="min",
+                    help="a variant's time over every run of every process (default min: noise only adds time)")
     ap.add_argument("--dry-run", action="store_true", help="print the table, write nothing")
     args = ap.parse_args()
     if bool(args.driver) == bool(args.measured):
@@ -248,22 +255,22 @@ def main():
         fail("--measured needs --profile NAME")
     path = profile_path(profile, args.base)
     if args.measured:
-        measured = merged([read_measured(path) for path in args.measured.split(",")])
+        measured = merged([read_measured(path) for path in args.measured.split(",")], args.statistic)
     else:
-        measured = run_probe(args)
+        measured = merged([run_probe(args)], args.statistic)
     clock = clock_of(measured, args.clock)
     rows = collect(measured, args.weft, path, clock)  # the file: a new profile is not built in yet
     ns_per = fit(rows, set(args.fit.split(",")))
     ns_per = {t: float(f"{v:.6g}") for t, v in ns_per.items()}
     speedups(rows, ns_per)
-    print_table(rows, measured.get("renderer", "?"), clock)
+    print_table(rows, measured.get("renderer", "?"), clock, args.statistic)
     print("ns per count: " + ", ".join(f"{t} {v:.4g}" for t, v in ns_per.items()))
     if args.dry_run:
         return
     source = f"--driver {args.driver}" if args.driver else "--measured " + ",".join(os.path.basename(p) for p in args.measured.split(","))
-    command = f"bench/hwsim_calibrate.py {source} --profile {profile}"
+    command = f"bench/hwsim_calibrate.py {source} --profile {profile} --statistic {args.statistic}"
     when = datetime.date.today().isoformat()
-    write_profile(path, f"measured {when} ({clock} time) on {measured.get('renderer', '?')} by {command}", ns_per)
+    write_profile(path, f"calibrated {when} ({args.statistic} {clock} time) on {measured.get('renderer', '?')} by {command}", ns_per)
     write_record(profile, measured, rows, command, clock)
     print(f"wrote {os.path.relpath(path, ROOT)} and hwsim/profiles/calibration/{profile}.json")
 

@@ -14,7 +14,9 @@
 // counted (Table 1 times the light accumulation only); split counts its
 // split and gather passes. All interleaved variants make the same image.
 // Cost units: a light evaluation costs `light_cost`, a skipped light or a
-// texel copy costs 1.
+// texel copy costs 1. The split and gather programs fetch their texel
+// through the interleave's permutation, away from their own pixel, which
+// texture caches pay for per fetch: the variant's texture.scattered_fetches.
 #include <cmath>
 
 #include "core/base/rng.hpp"
@@ -29,6 +31,13 @@ struct Setup {
     int w, h, n, lights, lightCost;
     int cls(int x, int y) const { return x % n + n * (y % n); }
     int lightClass(int l) const { return l % (n * n); }
+};
+
+// A variant's pipeline counts and its program runs whose texel fetch goes
+// through the interleave's permutation.
+struct Run {
+    StageCounts counts;
+    std::int64_t scatteredFetches = 0;
 };
 
 // A deterministic irradiance-like contribution of light l at pixel (x, y).
@@ -58,14 +67,14 @@ Image toImage(const Framebuffer& fb) {
     return img;
 }
 
-StageCounts runNone(const Setup& s, const Profile& profile, Framebuffer& fb) {
+Run runNone(const Setup& s, const Profile& profile, Framebuffer& fb) {
     Pipeline pipe(fb, profile);
     additive(pipe);
     for (int l = 0; l < s.lights; ++l) pipe.drawRect(0, 0, s.w, s.h, 0, LightProgram{l, s.lightCost});
-    return pipe.counts();
+    return {pipe.counts()};
 }
 
-StageCounts runStencil(const Setup& s, const Profile& profile, Framebuffer& fb) {
+Run runStencil(const Setup& s, const Profile& profile, Framebuffer& fb) {
     for (int y = 0; y < s.h; ++y)
         for (int x = 0; x < s.w; ++x) fb.stencil[fb.index(x, y)] = std::uint8_t(s.cls(x, y));
     Pipeline pipe(fb, profile);
@@ -75,12 +84,12 @@ StageCounts runStencil(const Setup& s, const Profile& profile, Framebuffer& fb) 
         pipe.state.stencil.ref = std::uint8_t(s.lightClass(l));
         pipe.drawRect(0, 0, s.w, s.h, 0, LightProgram{l, s.lightCost});
     }
-    return pipe.counts();
+    return {pipe.counts()};
 }
 
 float classDepth(const Setup& s, int c) { return float(c + 1) / float(s.n * s.n + 1); }
 
-StageCounts runDepth(const Setup& s, const Profile& profile, Framebuffer& fb) {
+Run runDepth(const Setup& s, const Profile& profile, Framebuffer& fb) {
     for (int y = 0; y < s.h; ++y)
         for (int x = 0; x < s.w; ++x) fb.depth[fb.index(x, y)] = classDepth(s, s.cls(x, y));
     Pipeline pipe(fb, profile);
@@ -88,10 +97,10 @@ StageCounts runDepth(const Setup& s, const Profile& profile, Framebuffer& fb) {
     pipe.state.depth = {true, CompareFunc::Equal, false};
     for (int l = 0; l < s.lights; ++l)
         pipe.drawRect(0, 0, s.w, s.h, classDepth(s, s.lightClass(l)), LightProgram{l, s.lightCost});
-    return pipe.counts();
+    return {pipe.counts()};
 }
 
-StageCounts runBranch(const Setup& s, const Profile& profile, Framebuffer& fb) {
+Run runBranch(const Setup& s, const Profile& profile, Framebuffer& fb) {
     Pipeline pipe(fb, profile);
     additive(pipe);
     for (int l = 0; l < s.lights; ++l)
@@ -100,11 +109,11 @@ StageCounts runBranch(const Setup& s, const Profile& profile, Framebuffer& fb) {
             o.color = {mine && !f.helper ? contribution(f.x, f.y, l) : 0.0f, 0, 0, 0};
             o.cost = mine ? s.lightCost : 1;
         });
-    return pipe.counts();
+    return {pipe.counts()};
 }
 
 // Sub-buffer of class c: the rectangle at (i * w/n, j * h/n) of size w/n x h/n.
-StageCounts runSplit(const Setup& s, const Profile& profile, Framebuffer& fb) {
+Run runSplit(const Setup& s, const Profile& profile, Framebuffer& fb) {
     const int sw = s.w / s.n, sh = s.h / s.n;
     auto source = [&](int sx, int sy, int& x, int& y) {  // split texel -> G-buffer pixel
         const int i = sx / sw, j = sy / sh;
@@ -113,6 +122,7 @@ StageCounts runSplit(const Setup& s, const Profile& profile, Framebuffer& fb) {
     Framebuffer split(s.w, s.h, 1.0f, 1);  // GL_R32F, as the probe's split accumulation buffer
     Pipeline pipe(split, profile);
     pipe.drawRect(0, 0, s.w, s.h, 0, [](const Fragment&, FragmentOutput& o) { o.color = {0, 0, 0, 0}; });  // split pass (copy)
+    const std::int64_t splitFetches = pipe.counts().invocations;
     additive(pipe);
     for (int l = 0; l < s.lights; ++l) {
         const int c = s.lightClass(l), x0 = (c % s.n) * sw, y0 = (c / s.n) * sh;
@@ -130,7 +140,7 @@ StageCounts runSplit(const Setup& s, const Profile& profile, Framebuffer& fb) {
         o.color = split.texel(split.index(i * sw + f.x / s.n, j * sh + f.y / s.n));
     });
     counts.add(gather.counts());
-    return counts;
+    return {counts, splitFetches + gather.counts().invocations};
 }
 
 ReplayResult runSegovia(const Profile& profile, const ParamSet& p) {
@@ -144,9 +154,10 @@ ReplayResult runSegovia(const Profile& profile, const ParamSet& p) {
     {
         Framebuffer fb(w, h, 1.0f, 1);  // GL_R32F, as the probe's accumulation buffer
         const Setup s{w, h, 1, lights, cost};
-        result.variants.push_back({"none", withStageCounts(runNone(s, profile, fb), {{"passes", lights}})});
+        const CounterMap own{{"passes", lights}, {"texture.scattered_fetches", 0}};
+        result.variants.push_back({"none", withStageCounts(runNone(s, profile, fb).counts, own)});
     }
-    using Runner = StageCounts (*)(const Setup&, const Profile&, Framebuffer&);
+    using Runner = Run (*)(const Setup&, const Profile&, Framebuffer&);
     const std::pair<const char*, Runner> methods[] = {
         {"stencil", runStencil}, {"depth", runDepth}, {"branch", runBranch}, {"split", runSplit}};
     for (int n : patterns) {
@@ -156,10 +167,11 @@ ReplayResult runSegovia(const Profile& profile, const ParamSet& p) {
         bool same = true;
         for (const auto& [name, run] : methods) {
             Framebuffer fb(w, h, 1.0f, 1);
-            const StageCounts c = run(s, profile, fb);
+            const Run r = run(s, profile, fb);
             const std::string label = std::string(name) + " " + std::to_string(n) + "x" + std::to_string(n);
             const int passes = lights + (std::string(name) == "split" ? 2 : 0);
-            result.variants.push_back({label, withStageCounts(c, {{"passes", passes}})});
+            const CounterMap own{{"passes", passes}, {"texture.scattered_fetches", r.scatteredFetches}};
+            result.variants.push_back({label, withStageCounts(r.counts, own)});
             if (first.empty()) first = fb.color;
             else same = same && first == fb.color;
             if (std::string(name) == "split") result.image = toImage(fb);

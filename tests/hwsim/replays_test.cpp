@@ -35,6 +35,17 @@ TEST(HwsimSegovia, IdealHardwareWouldGainFromEveryMethod) {
     EXPECT_EQ(at(r, "split 4x4", "fragment_program.invocations"), kN + kLights * kN / 16 + kN);
 }
 
+// Only the split and gather copies fetch through the interleave's
+// permutation: one scattered fetch per pixel each, whatever the pattern.
+TEST(HwsimSegovia, SplitAndGatherFetchEveryTexelScattered) {
+    const ReplayResult r = segovia("mesa-softpipe");
+    for (const char* n : {"2x2", "4x4"}) {
+        EXPECT_EQ(at(r, "split " + std::string(n), "texture.scattered_fetches"), 2 * kN) << n;
+        for (const char* m : {"stencil ", "depth ", "branch "}) EXPECT_EQ(at(r, m + std::string(n), "texture.scattered_fetches"), 0) << m << n;
+    }
+    EXPECT_EQ(at(r, "none", "texture.scattered_fetches"), 0);
+}
+
 TEST(HwsimSegovia, OnTheGeforce7800OnlySplittingPays) {
     const ReplayResult r = segovia("geforce-7800");
     const std::int64_t full = at(r, "none", "fragment_program.cost");
