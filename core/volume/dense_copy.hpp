@@ -7,12 +7,16 @@
 // of the box and the box holds at most 2^25 voxels (128 MB); other grids
 // keep their tree. The values are the grid's own (copyToDense reads tiles
 // and inactive voxels as getValue does), so lookups through it equal the
-// leaf path's bit for bit.
+// leaf path's bit for bit. The array lies on huge pages (large_buffer.hpp):
+// on a virtual machine, faulting in tens of megabytes 4 KiB at a time cost
+// more than copying the values.
 #include <cstddef>
 #include <memory>
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
+
+#include "core/base/large_buffer.hpp"
 
 namespace weft {
 
@@ -48,10 +52,11 @@ public:
 
 private:
     explicit DenseCopy(const openvdb::CoordBBox& box)
-        : dense_(box), lo_(box.min()), xStride_(dense_.xStride()), yStride_(dense_.yStride()) {
+        : storage_(std::size_t(box.volume())), dense_(box, storage_.data()), lo_(box.min()), xStride_(dense_.xStride()), yStride_(dense_.yStride()) {
         for (int a = 0; a < 3; ++a) cells_[a] = unsigned(box.dim()[a] - 1);
     }
 
+    FreshBuffer<Value> storage_;                                    // dense_'s values, filled by copyToDense
     openvdb::tools::Dense<Value, openvdb::tools::LayoutZYX> dense_;  // z fastest
     openvdb::Coord lo_;
     std::size_t xStride_, yStride_;
