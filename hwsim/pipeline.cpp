@@ -112,6 +112,8 @@ DrawPlan Pipeline::plan(const ProgramTraits& t) {
     p.colorReplace = everyChannel && !blend.enabled;
     p.colorAdd = everyChannel && blend.enabled && blend.src == BlendFactor::One && blend.dst == BlendFactor::One;
     p.stampW = pr.statsStampW, p.stampH = pr.statsStampH, p.statsAtScan = pr.statsCountedAtScan;
+    p.flat = t.flat && p.depthFirst && !t.mayDiscard && fb_.width % 2 == 0 && fb_.height % 2 == 0 &&
+             (!p.colorWrites || p.colorReplace || p.colorAdd);
     p.tileW = std::max({16, pr.coarseTile, pr.branchBlockW});
     p.tileH = std::max({16, pr.coarseTile, pr.branchBlockH});
     return p;

@@ -37,6 +37,12 @@ struct ProgramTraits {
     bool sideEffects = false;         // image, buffer or atomic-counter writes
     bool earlyFragmentTests = false;  // layout(early_fragment_tests)
     bool readsPosition = false;       // gl_FragCoord (matters only to a profile quirk)
+    // Flat shading: the program's outputs and cost depend on the primitive
+    // alone (not on the fragment's position, depth or helper state) and it
+    // never discards. Where the plan allows (DrawPlan::flat) it then runs
+    // once per primitive and tile and its result stands for every lane;
+    // every count is the same as running it per lane.
+    bool flat = false;
 };
 
 struct Fragment {
@@ -87,6 +93,11 @@ struct DrawPlan {
     // before any program runs (a primitive covers a pixel once, so the order
     // within the tile cannot matter).
     bool depthFirst = false;
+    // A flat program (ProgramTraits::flat) on the depthFirst path, into a
+    // target of even size (no quad lane past its edge) with every colour
+    // channel written or none: a tile's lanes are counted and written from
+    // its row masks, the program run once (Pipeline::shadeFlatTile).
+    bool flat = false;
     int tileW = 16, tileH = 16, blockW = 1, blockH = 1, coarseTile = 0;
     bool wholeBlock = false;  // a lock-step block that runs costs all its lanes (fixed-width SIMD)
     int stampW = 1, stampH = 1;  // the profile's FRAGMENT_SHADER_INVOCATIONS stamp
@@ -163,6 +174,11 @@ private:
                        std::uint64_t* live, StageCounts& c) const;
     void cullCoarseTiles(const PrimitiveSetup& s, const DrawPlan& p, int tx0, int ty0, int y1, int x1,
                          std::uint8_t* masks, StageCounts& c) const;
+    // The programs, counts and writes of a tile's depth-tested live rows
+    // for a flat program (DrawPlan::flat), as the quads of scanTile count them.
+    template <class Program>
+    void shadeFlatTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, int rowCount,
+                       const std::uint64_t* live, StageCounts& c) const;
     // Both return the lanes whose program ran for the fragment (not as a helper).
     template <class Program>
     unsigned shadePixels(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int qx, int qy, unsigned mask,

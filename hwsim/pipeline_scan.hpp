@@ -81,6 +81,9 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
     if (p.statsAtScan) c.fragmentShaderInvocations += stampsHit(scanned.data(), rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
     if (liveCount == 0) return;
     if (p.depthFirst) depthTestRows(s, p, tx0, ty0, x0, x1, rowCount, live.data(), c);
+    if constexpr (!requires(const FragmentOutput& o) { program.writeOutputs(Fragment{}, o); }) {
+        if (p.flat) return shadeFlatTile(s, program, p, tx0, ty0, rowCount, live.data(), c);
+    }
     const int qw = p.tileW / 2, quadRows = rowCount / 2, quadCols = (x1 - tx0 + 1) / 2;
     // A quad's live lanes come from the row masks; only coarse culling needs
     // them all in an array first (it clears whole coarse tiles of them).
@@ -131,6 +134,48 @@ void Pipeline::scanTile(const PrimitiveSetup& s, Program& program, const DrawPla
         const int b = touched[i];
         c.cost += blockMax[b] * (p.wholeBlock && blockLanes[b] ? p.blockW * p.blockH : blockLanes[b]);
     }
+}
+
+// What scanTile's quad loop and shadeTestedQuad add up for a depth-tested
+// tile, from the row masks: every quad with a live lane runs (all four lanes
+// where shading is by quads), each lock-step block with a running quad costs
+// the program's cost per lane (all its lanes where whole blocks run), and
+// each live lane passes and is written.
+template <class Program>
+void Pipeline::shadeFlatTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, int rowCount,
+                             const std::uint64_t* live, StageCounts& c) const {
+    constexpr std::uint64_t kQuadColumns = 0x5555555555555555ull;  // bit 2 qxi: the quad's left column
+    std::int64_t pixels = 0, quads = 0, blocks = 0;
+    for (int row = 0; row < rowCount; row += 2) {
+        const std::uint64_t both = live[row] | live[row + 1];
+        pixels += bitCount(live[row]) + bitCount(live[row + 1]);
+        quads += bitCount((both | both >> 1) & kQuadColumns);
+    }
+    if (!p.statsAtScan) c.fragmentShaderInvocations += stampsHit(live, rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
+    if (pixels == 0) return;
+    const bool lockStep = p.blockW * p.blockH > 1;
+    if (lockStep)  // blocks holding a live lane: OR their rows, then their columns
+        for (int row = 0; row < rowCount; row += p.blockH) {
+            std::uint64_t any = 0, firstColumns = 0;
+            for (int r = row; r < std::min(row + p.blockH, rowCount); ++r) any |= live[r];
+            for (int shift = 1; shift < p.blockW; shift <<= 1) any |= any >> shift;
+            for (int col = 0; col < 64; col += p.blockW) firstColumns |= std::uint64_t(1) << col;
+            blocks += bitCount(any & firstColumns);
+        }
+    int row0 = 0;
+    while (!live[row0]) ++row0;
+    const int x = tx0 + std::countr_zero(live[row0]), y = ty0 + row0;
+    FragmentOutput o;
+    program(Fragment{x, y, s.depthAt(x, y), false, s.primitive}, o);
+    const std::int64_t ran = p.quad ? 4 * quads : pixels;
+    c.invocations += ran, c.helpers += ran - pixels;
+    c.cost += o.cost * (lockStep && p.wholeBlock ? blocks * p.blockW * p.blockH : ran);
+    c.samplesPassed += pixels;
+    if (p.colorWrites || p.depthWrites) c.pixelsWritten += pixels;
+    if (!p.colorWrites) return;
+    for (int row = 0; row < rowCount; ++row)
+        for (std::uint64_t bits = live[row]; bits; bits &= bits - 1)
+            writeColor(fb_.index(tx0 + std::countr_zero(bits), ty0 + row), o.color, p);
 }
 
 // The short path (DrawPlan::simple): each live pixel through an optional

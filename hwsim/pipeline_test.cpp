@@ -533,6 +533,46 @@ TEST(HwsimPipeline, DepthTestedRowsCountAsDepthTestedQuads) {
     EXPECT_FALSE(llvmpipe.plan({.mayDiscard = true}).depthFirst);
 }
 
+// A flat program (ProgramTraits::flat) runs once per primitive and tile
+// where the plan allows; every count and buffer must equal running it per
+// lane, under every profile, unblended and added, stippled or not.
+TEST(HwsimPipeline, FlatProgramsCountAsProgramsRunPerLane) {
+    const auto triangles = fan(40);
+    auto program = [](const Fragment& f, FragmentOutput& o) {
+        o.color = {float(f.primitive % 5) / 4.0f, 0.5f, 0, 1};
+        o.cost = 1 + f.primitive % 3;
+    };
+    int flatPlans = 0;
+    for (const Profile& pr : builtinProfiles())
+        for (const bool add : {false, true})
+            for (const bool stipple : {false, true}) {
+                if (stipple && !pr.polygonStipple) continue;
+                auto render = [&](bool flat) {
+                    Framebuffer fb(300, 200);
+                    Pipeline pipe(fb, pr);
+                    pipe.state.depth = {true, CompareFunc::Less, true};
+                    if (add) pipe.state.blend = {true, BlendFactor::One, BlendFactor::One};
+                    if (stipple) pipe.state.stipple = {true, StippleState::interleaved(4, 1, 2)};
+                    flatPlans += flat && pipe.plan({.flat = true}).flat;
+                    pipe.drawTriangles(triangles, program, {.flat = flat});
+                    return std::make_pair(pipe.counts().named(), fb);
+                };
+                const auto [perLane, perLaneFb] = render(false);
+                const auto [flat, flatFb] = render(true);
+                const std::string what = pr.name + (add ? " added" : " replaced") + (stipple ? " stippled" : "");
+                EXPECT_EQ(perLane, flat) << what;
+                EXPECT_EQ(perLaneFb.color, flatFb.color) << what;
+                EXPECT_EQ(perLaneFb.depth, flatFb.depth) << what;
+                EXPECT_GT(perLane.at("fragment_program.invocations"), 1000) << what;
+            }
+    EXPECT_GE(flatPlans, 4);  // llvmpipe, at least, took the flat path in every case
+    Framebuffer odd(301, 200);
+    Pipeline llvmpipe(odd, findProfile("mesa-llvmpipe"));
+    llvmpipe.state.depth = {true, CompareFunc::Less, true};
+    EXPECT_FALSE(llvmpipe.plan({.flat = true}).flat);  // a quad lane past the edge: per lane
+    EXPECT_FALSE(llvmpipe.plan({.mayDiscard = true, .flat = true}).flat);
+}
+
 // Counts and buffers do not depend on how tiles were spread over threads.
 TEST(HwsimPipeline, ThreadedAndSerialDrawsAgree) {
     auto render = [](bool parallel, const char* profile) {

@@ -37,7 +37,8 @@ std::vector<SceneTriangle> randomScene(int count, int width, int height, std::ui
     return scene;
 }
 
-// The scene's shading: each triangle's flat shade, picked by gl_PrimitiveID.
+// The scene's shading: each triangle's flat shade, picked by gl_PrimitiveID
+// (ProgramTraits::flat: hwsim may run it once per triangle and tile).
 struct SceneProgram {
     const std::vector<SceneTriangle>* scene;
     int cost;
@@ -53,7 +54,7 @@ void drawScene(Pipeline& pipe, const std::vector<SceneTriangle>& scene, float dx
     std::vector<std::array<Vertex, 3>> shifted(scene.size());
     for (std::size_t i = 0; i < scene.size(); ++i)
         for (int k = 0; k < 3; ++k) shifted[i][k] = {scene[i].v[k].x + dx, scene[i].v[k].y + dy, scene[i].v[k].z};
-    pipe.drawTriangles(shifted, SceneProgram{&scene, cost});
+    pipe.drawTriangles(shifted, SceneProgram{&scene, cost}, {.flat = true});
 }
 
 float offset(int i, int n) { return (float(i) + 0.5f) / float(n) - 0.5f; }
