@@ -154,14 +154,16 @@ void Pipeline::shadeFlatTile(const PrimitiveSetup& s, Program& program, const Dr
     if (!p.statsAtScan) c.fragmentShaderInvocations += stampsHit(live, rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
     if (pixels == 0) return;
     const bool lockStep = p.blockW * p.blockH > 1;
-    if (lockStep)  // blocks holding a live lane: OR their rows, then their columns
+    if (lockStep) {  // blocks holding a live lane: OR their rows, then their columns
+        std::uint64_t firstColumns = 0;
+        for (int col = 0; col < 64; col += p.blockW) firstColumns |= std::uint64_t(1) << col;
         for (int row = 0; row < rowCount; row += p.blockH) {
-            std::uint64_t any = 0, firstColumns = 0;
+            std::uint64_t any = 0;
             for (int r = row; r < std::min(row + p.blockH, rowCount); ++r) any |= live[r];
             for (int shift = 1; shift < p.blockW; shift <<= 1) any |= any >> shift;
-            for (int col = 0; col < 64; col += p.blockW) firstColumns |= std::uint64_t(1) << col;
             blocks += bitCount(any & firstColumns);
         }
+    }
     int row0 = 0;
     while (!live[row0]) ++row0;
     const int x = tx0 + std::countr_zero(live[row0]), y = ty0 + row0;

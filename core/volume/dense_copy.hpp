@@ -52,7 +52,8 @@ public:
 
 private:
     explicit DenseCopy(const openvdb::CoordBBox& box)
-        : storage_(std::size_t(box.volume())), dense_(box, storage_.data()), lo_(box.min()), xStride_(dense_.xStride()), yStride_(dense_.yStride()) {
+        : storage_(std::size_t(box.volume())), dense_(box, storage_.data()), lo_(box.min()), xStride_(dense_.xStride()),
+          yStride_(dense_.yStride()) {
         for (int a = 0; a < 3; ++a) cells_[a] = unsigned(box.dim()[a] - 1);
     }
 
