@@ -11,14 +11,18 @@ namespace weft::hwsim {
 
 namespace {
 
-// The counters a term may name: every pipeline counter plus the replays' own
-// ("passes"; segovia.table1's "texture.scattered_fetches").
+// The counters a term may name: every pipeline counter plus the replays' own.
+const char* const kReplayCounters[] = {"passes", "texture.scattered_fetches" /* segovia.table1 */};
+
 bool knownCounter(const std::string& name) {
-    return name == "passes" || name == "texture.scattered_fetches" || StageCounts{}.named().count(name) > 0;
+    for (const char* own : kReplayCounters)
+        if (name == own) return true;
+    return StageCounts{}.named().count(name) > 0;
 }
 
 std::string knownCounters() {
-    std::string all = "passes, texture.scattered_fetches";
+    std::string all;
+    for (const char* own : kReplayCounters) all += (all.empty() ? "" : ", ") + std::string(own);
     for (const auto& [k, v] : StageCounts{}.named()) all += ", " + k;
     return all;
 }

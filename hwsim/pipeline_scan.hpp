@@ -145,7 +145,7 @@ template <class Program>
 void Pipeline::shadeFlatTile(const PrimitiveSetup& s, Program& program, const DrawPlan& p, int tx0, int ty0, int rowCount,
                              const std::uint64_t* live, StageCounts& c) const {
     constexpr std::uint64_t kQuadColumns = 0x5555555555555555ull;  // bit 2 qxi: the quad's left column
-    std::int64_t pixels = 0, quads = 0, blocks = 0;
+    std::int64_t pixels = 0, quads = 0;
     for (int row = 0; row < rowCount; row += 2) {
         const std::uint64_t both = live[row] | live[row + 1];
         pixels += bitCount(live[row]) + bitCount(live[row + 1]);
@@ -153,17 +153,6 @@ void Pipeline::shadeFlatTile(const PrimitiveSetup& s, Program& program, const Dr
     }
     if (!p.statsAtScan) c.fragmentShaderInvocations += stampsHit(live, rowCount, p.stampW, p.stampH) * p.stampW * p.stampH;
     if (pixels == 0) return;
-    const bool lockStep = p.blockW * p.blockH > 1;
-    if (lockStep) {  // blocks holding a live lane: OR their rows, then their columns
-        std::uint64_t firstColumns = 0;
-        for (int col = 0; col < 64; col += p.blockW) firstColumns |= std::uint64_t(1) << col;
-        for (int row = 0; row < rowCount; row += p.blockH) {
-            std::uint64_t any = 0;
-            for (int r = row; r < std::min(row + p.blockH, rowCount); ++r) any |= live[r];
-            for (int shift = 1; shift < p.blockW; shift <<= 1) any |= any >> shift;
-            blocks += bitCount(any & firstColumns);
-        }
-    }
     int row0 = 0;
     while (!live[row0]) ++row0;
     const int x = tx0 + std::countr_zero(live[row0]), y = ty0 + row0;
@@ -171,7 +160,8 @@ void Pipeline::shadeFlatTile(const PrimitiveSetup& s, Program& program, const Dr
     program(Fragment{x, y, s.depthAt(x, y), false, s.primitive}, o);
     const std::int64_t ran = p.quad ? 4 * quads : pixels;
     c.invocations += ran, c.helpers += ran - pixels;
-    c.cost += o.cost * (lockStep && p.wholeBlock ? blocks * p.blockW * p.blockH : ran);
+    const bool wholeBlocks = p.wholeBlock && p.blockW * p.blockH > 1;  // blocks holding a live lane, counted as stamps are
+    c.cost += o.cost * (wholeBlocks ? stampsHit(live, rowCount, p.blockW, p.blockH) * p.blockW * p.blockH : ran);
     c.samplesPassed += pixels;
     if (p.colorWrites || p.depthWrites) c.pixelsWritten += pixels;
     if (!p.colorWrites) return;
