@@ -79,12 +79,13 @@ std::vector<std::uint8_t> fullWalks(const std::vector<std::uint8_t>& disc, int w
 }
 
 // One direction of the separable blur: along x or along y. C channels of
-// each `stride` floats (C fixed at compile time for the common counts).
-// Pixels whose walk reaches the full radius both ways take the plain
-// Gaussian over runs of pixels (all `stride` floats, into a row buffer,
-// of which the C channels are kept); the others walk.
+// each pixel's `srcStride` floats in, of its `dstStride` floats out (C
+// fixed at compile time for the common counts). Pixels whose walk reaches
+// the full radius both ways take the plain Gaussian over runs of pixels
+// (all `srcStride` floats, into a row buffer, of which the C channels are
+// kept); the others walk.
 template <int C>
-void blurPass(const float* src, float* dst, int width, int height, int stride, int channels,
+void blurPass(const float* src, float* dst, int width, int height, int srcStride, int dstStride, int channels,
               const std::vector<std::uint8_t>& disc, const std::vector<float>& weights, bool alongX) {
     const int radius = int(weights.size()) - 1;
     const int nc = C > 0 ? C : channels;
@@ -92,6 +93,7 @@ void blurPass(const float* src, float* dst, int width, int height, int stride, i
     for (int k = 1; k <= radius; ++k) wsumFull += weights[std::size_t(k)];
     for (int k = 1; k <= radius; ++k) wsumFull += weights[std::size_t(k)];
     const float invFull = 1.0f / wsumFull;
+    const int stride = srcStride;
     const std::ptrdiff_t tap = alongX ? stride : std::ptrdiff_t(width) * stride;
     tbb::parallel_for(0, height, [&](int y) {
         float acc[64];
@@ -115,7 +117,7 @@ void blurPass(const float* src, float* dst, int width, int height, int stride, i
         for (int x = 0; x < width; ++x) {
             const std::size_t base = std::size_t(y) * width + x;
             if (full[std::size_t(x)]) {
-                for (int c = 0; c < nc; ++c) dst[base * stride + c] = plain[std::size_t(x) * stride + c];
+                for (int c = 0; c < nc; ++c) dst[base * dstStride + c] = plain[std::size_t(x) * stride + c];
                 continue;
             }
             const int pos = alongX ? x : y;
@@ -131,16 +133,18 @@ void blurPass(const float* src, float* dst, int width, int height, int stride, i
             for (int k = 1; k <= radius && pos + k < len && !disc[at(pos + k - 1)]; ++k) add(pos + k, weights[std::size_t(k)]);
             for (int k = 1; k <= radius && pos - k >= 0 && !disc[at(pos - k)]; ++k) add(pos - k, weights[std::size_t(k)]);
             const float inv = 1.0f / wsum;
-            for (int c = 0; c < nc; ++c) dst[base * stride + c] = acc[c] * inv;
+            for (int c = 0; c < nc; ++c) dst[base * dstStride + c] = acc[c] * inv;
         }
     });
 }
 
+// The pass along x keeps only the blurred channels, so the pass along y
+// reads `channels` floats per pixel, not `stride`.
 template <int C>
 void blurBoth(float* data, float* tmp, int width, int height, int stride, int channels,
               const std::vector<std::uint8_t>& disc, const std::vector<float>& weights) {
-    blurPass<C>(data, tmp, width, height, stride, channels, disc, weights, true);
-    blurPass<C>(tmp, data, width, height, stride, channels, disc, weights, false);
+    blurPass<C>(data, tmp, width, height, stride, channels, channels, disc, weights, true);
+    blurPass<C>(tmp, data, width, height, channels, stride, channels, disc, weights, false);
 }
 
 }  // namespace
@@ -160,7 +164,7 @@ void discontinuityBlur(float* data, float* scratch, int width, int height, int s
 void discontinuityBlur(float* data, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius) {
     if (radius <= 0 || channels <= 0) return;
-    FreshBuffer<float> scratch(std::size_t(width) * height * stride);
+    FreshBuffer<float> scratch(std::size_t(width) * height * channels);
     discontinuityBlur(data, scratch.data(), width, height, stride, channels, discontinuity, radius);
 }
 

@@ -29,7 +29,7 @@ std::vector<std::uint8_t> discontinuityBuffer(const GBuffer& g, const Discontinu
 
 // Blurs the first `channels` of every `stride` floats per pixel in place;
 // kernel size 2*radius+1, sigma = radius / 2 (radius 0: no-op). `scratch`
-// holds the pass along x (width * height * stride floats, contents
+// holds the pass along x (width * height * channels floats, contents
 // ignored); without it the blur allocates its own.
 void discontinuityBlur(float* data, float* scratch, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius);

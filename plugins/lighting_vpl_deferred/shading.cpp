@@ -40,17 +40,29 @@ struct TaskCounts {
     std::int64_t fragments = 0, rays = 0;
 };
 
-void shadeTask(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& L, const ShadeTask& task,
+// Where sub-buffer texel (x, y) of the task's sub-buffer lies: in the split
+// copy (split order) or, fused, in the G-buffer itself (image order, pixel
+// (x n + i, y m + j)). The light buffer is written at the same index.
+std::size_t texelIndex(const ShadeSource& src, const SubBufferLayout& L, int i, int j, int x, int y) {
+    if (src.split) return std::size_t(L.y0(j) + y) * L.width() + std::size_t(L.x0(i) + x);
+    return std::size_t(y * L.m() + j) * L.width() + std::size_t(x * L.n() + i);
+}
+
+void shadeTask(const Scene& scene, const ShadeSource& src, const SubBufferLayout& L, const ShadeTask& task,
                const std::vector<const Vpl*>& subset, float subsetPaths, const std::vector<Brdf>& brdfs,
                const ShadeConfig& cfg, LightBuffer& out, TaskCounts& counts, Counters& counters) {
     const int i = task.subBuffer % L.n(), j = task.subBuffer / L.n();
-    std::vector<std::size_t> texels;
+    // The tile's texels, copied once: every VPL of the subset reads them again.
+    std::vector<std::size_t> index;
+    std::vector<ShadeTexel> texels;
     for (int r = task.y0; r < task.y1; ++r)
         for (int x = task.x0; x < task.x1; ++x) {
-            const std::size_t o = std::size_t(L.y0(j) + r) * L.width() + std::size_t(L.x0(i) + x);
-            if (!split[o].background()) texels.push_back(o);
+            const std::size_t o = texelIndex(src, L, i, j, x, r);
+            const ShadeTexel t = src.split ? (*src.split)[o] : ShadeTexel(src.gbuffer->texels[o]);
+            if (!t.background()) index.push_back(o), texels.push_back(t);
         }
     std::vector<VplShading> shading(texels.size());
+    std::vector<LightTexel> light(texels.size(), LightTexel{});
     std::vector<RTCRay> rays;
     std::vector<std::uint32_t> lit;
     const MeshAccel& accel = scene.accel();
@@ -61,7 +73,7 @@ void shadeTask(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const S
         rays.clear(), lit.clear();
         const Vec3f origin = vpl->position + vpl->normal * cfg.eps;
         for (std::uint32_t k = 0; k < texels.size(); ++k) {
-            const ShadeTexel& t = split[texels[k]];
+            const ShadeTexel& t = texels[k];
             if (!shadeWithVpl(*vpl, t, cfg.eye, brdfs, cfg.gmax, shading[k])) continue;
             lit.push_back(k);
             if (!cfg.visibility) continue;
@@ -78,7 +90,7 @@ void shadeTask(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const S
         for (std::size_t r = 0; r < lit.size(); ++r) {
             if (cfg.visibility && rays[r].tfar < 0) continue;  // occluded: Embree set tfar to -inf
             const VplShading& sh = shading[lit[r]];
-            LightTexel& o = out[texels[lit[r]]];
+            LightTexel& o = light[lit[r]];
             if (media) {
                 const Vec3f T = media->along(origin, -sh.toLight, sh.distance);
                 (emitter ? o.directD : o.indirectD) += sh.d * T;
@@ -90,29 +102,29 @@ void shadeTask(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const S
         }
     }
     const float scale = 1.0f / subsetPaths;
-    for (std::size_t o : texels) {
-        LightTexel& t = out[o];
-        t.directD *= scale, t.directS *= scale, t.indirectD *= scale, t.indirectS *= scale;
+    for (std::size_t k = 0; k < texels.size(); ++k) {
+        const LightTexel& t = light[k];
+        out[index[k]] = {t.directD * scale, t.indirectD * scale, t.directS * scale, t.indirectS * scale};
     }
     if (media) media->report(counters);
 }
 
 }  // namespace
 
-LightBuffer shadeSubBuffers(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& L,
+LightBuffer shadeSubBuffers(const Scene& scene, const ShadeSource& src, const SubBufferLayout& L,
                                         const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
                                         Counters& counters) {
     const int S = L.count();
     std::vector<std::vector<const Vpl*>> subsets(static_cast<std::size_t>(S));
     for (const Vpl& v : vpls.vpls) subsets[v.path % std::uint32_t(S)].push_back(&v);
-    LightBuffer out = zeroedBuffer<LightTexel>(split.size());
+    LightBuffer out = zeroedBuffer<LightTexel>(std::size_t(L.width()) * std::size_t(L.height()));
     const std::vector<ShadeTask> tasks = shadeTasks(L);
     tbb::parallel_for(std::size_t(0), tasks.size(), [&](std::size_t k) {
         enableFastFloatMode();
         const ShadeTask& task = tasks[k];
         const float paths = float((vpls.paths - std::uint32_t(task.subBuffer) + std::uint32_t(S) - 1) / std::uint32_t(S));
         TaskCounts counts;
-        shadeTask(scene, split, L, task, subsets[std::size_t(task.subBuffer)], std::max(1.0f, paths), brdfs, cfg, out, counts, counters);
+        shadeTask(scene, src, L, task, subsets[std::size_t(task.subBuffer)], std::max(1.0f, paths), brdfs, cfg, out, counts, counters);
         counters.add(kFragmentsShaded, counts.fragments);
         counters.add(kRaysShadow, counts.rays);
     });

@@ -1,6 +1,6 @@
 #pragma once
 // The shading passes of interleaved deferred shading: every sub-buffer of
-// the split G-buffer is lit by its own VPL subset (SSM: with an Embree
+// the G-buffer is lit by its own VPL subset (SSM: with an Embree
 // shadow ray per VPL and texel, shot as one coherent stream from the VPL to
 // a run of the sub-buffer's texels; SNSM: visibility ignored), and the
 // Kollig-Keller pass that restores the energy the geometry-term clamp
@@ -11,6 +11,7 @@
 
 #include "core/base/counters.hpp"
 #include "core/base/large_buffer.hpp"
+#include "core/screen/gbuffer.hpp"
 #include "core/screen/interleave.hpp"
 #include "plugins/lighting_vpl_deferred/vpl.hpp"
 
@@ -40,10 +41,20 @@ struct ShadeConfig {
     const VolumeAttenuation* volumes = nullptr;
 };
 
-// `split` is the G-buffer's shading inputs in the layout's split order (plain order for 1 x 1).
-LightBuffer shadeSubBuffers(const Scene& scene, const LargeBuffer<ShadeTexel>& split, const SubBufferLayout& layout,
-                                        const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
-                                        Counters& counters);
+// Where the shading pass reads its texels and writes their light: the
+// split copy of the G-buffer (split order; the BS and BG passes around it
+// move the texels there and back), or, fused, the G-buffer itself, read and
+// written in image order through the interleave (no copies). Both give the
+// same light to the bit.
+struct ShadeSource {
+    const LargeBuffer<ShadeTexel>* split = nullptr;
+    const GBuffer* gbuffer = nullptr;  // read when `split` is null
+};
+
+// The light of every texel, at the texel's index in `source`.
+LightBuffer shadeSubBuffers(const Scene& scene, const ShadeSource& source, const SubBufferLayout& layout,
+                            const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
+                            Counters& counters);
 
 // Adds the clamped-away part of one-bounce indirect light (Kollig and Keller
 // 2004): a BRDF-sampled ray from each texel; where it lands closer than the

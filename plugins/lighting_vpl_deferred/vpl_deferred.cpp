@@ -4,18 +4,22 @@
 // Passes, each timed under its own name and counted:
 //   VG    VPL generation: `vpls` light paths, one bounce (vpl.hpp)
 //   BC    G-buffer creation with Embree ray streams (core/gbuffer)
-//   BS    G-buffer split into n x m sub-buffers (`split`: one_pass | two_pass
+//   BS    G-buffer split into n x m sub-buffers (`split=one_pass | two_pass`
 //         with `block` p x q blocks; core/screen/interleave.hpp)
 //   SSM / SNSM  shading of each sub-buffer with its own VPL subset, with
 //         Embree visibility per VPL (`visibility=true`) or without
 //   BG    gathering the light buffer back
+// By default (`split=fused`) the shading pass reads each sub-buffer's
+// texels from the G-buffer through the interleave and writes their light
+// in image order: BS and BG only feed it and take from it, so they are
+// fused into it (same image to the bit, two frame-sized copies fewer).
 //   KK    Kollig-Keller compensation of the geometry-term clamp (`clamp`,
 //         `bias_compensation` rays per pixel)
 //   DB    discontinuity buffer, B: discontinuity-aware separable Gaussian blur
 //   C     compose: albedos applied after the blur, point/directional lights
 //         (exact, every pixel), emission seen directly
 //   VT    with volumes: the transmittance from the eye to every texel
-// `interleave=1x1` skips BS/BG: plain deferred shading, every VPL at every
+// `interleave=1x1` has no BS/BG: plain deferred shading, every VPL at every
 // pixel. Each pixel of an n x m pattern sees the VPLs of paths k with
 // k mod (n m) equal to its sub-buffer index.
 //
@@ -63,7 +67,7 @@ std::pair<int, int> parsePair(const std::string& text, int maxValue) {
 struct VplParams {
     std::uint32_t paths;
     int n, m, p, q;
-    bool twoPass, visibility, filter;
+    bool copies, twoPass, visibility, filter;
     float clampFraction;
     double volumeStep;
     int compensation, radius;
@@ -77,6 +81,7 @@ VplParams readParams(const ParamSet& ps) {
     std::tie(v.n, v.m) = parsePair(ps.getString("interleave"), 64);
     std::tie(v.p, v.q) = parsePair(ps.getString("block"), 4096);
     if (!ps.wasSet("block")) v.p = (v.p + v.n - 1) / v.n * v.n, v.q = (v.q + v.m - 1) / v.m * v.m;  // default: 16x16 rounded up to the pattern
+    v.copies = ps.getString("split") != "fused";
     v.twoPass = ps.getString("split") == "two_pass";
     v.visibility = ps.getBool("visibility");
     v.filter = ps.getBool("filter");
@@ -128,13 +133,16 @@ public:
         }
 
         const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
-        const LargeBuffer<ShadeTexel> split = splitPass(g, layout, ctx);
+        const bool copies = p_.copies && layout.count() > 1;
+        LargeBuffer<ShadeTexel> split;
+        if (copies) split = splitPass(g, layout, ctx);
         LightBuffer light;
         {
             ScopedTimer t(ctx.timings, p_.visibility ? "SSM.shade" : "SNSM.shade");
-            light = shadeSubBuffers(scene, split, layout, vpls, brdfs, cfg, ctx.counters);
+            light = shadeSubBuffers(scene, {copies ? &split : nullptr, &g}, layout, vpls, brdfs, cfg, ctx.counters);
         }
-        LightBuffer spare = gatherPass(light, layout, ctx);
+        LargeBuffer<ShadeTexel>().swap(split);  // read by no later pass
+        LightBuffer spare = copies ? gatherPass(light, layout, ctx) : LightBuffer{};
         if (p_.compensation > 0 && std::isfinite(cfg.gmax)) {
             ScopedTimer t(ctx.timings, "KK.bias_compensation");
             compensateClamping(scene, g, brdfs, cfg, p_.compensation, s.seed, light, ctx.counters);
@@ -157,14 +165,12 @@ private:
         return cfg;
     }
 
-    // BS: the shading inputs in sub-buffer order (1x1: just packed).
+    // BS: the shading inputs in sub-buffer order.
     LargeBuffer<ShadeTexel> splitPass(const GBuffer& g, const SubBufferLayout& layout, RenderContext& ctx) const {
-        const bool interleaved = layout.count() > 1;
-        ScopedTimer t(ctx.timings, interleaved ? "BS.split" : "BS.pack");
+        ScopedTimer t(ctx.timings, "BS.split");
         LargeBuffer<ShadeTexel> split, scratch;
         auto pack = [](const GTexel& texel) { return ShadeTexel(texel); };
-        if (!interleaved) split.assign(g.texels.begin(), g.texels.end());
-        else if (p_.twoPass) splitTwoPass(g.texels, split, scratch, layout, p_.p, p_.q, pack);
+        if (p_.twoPass) splitTwoPass(g.texels, split, scratch, layout, p_.p, p_.q, pack);
         else splitOnePass(g.texels, split, layout, pack);
         return split;
     }
@@ -188,8 +194,12 @@ private:
         ScopedTimer t(ctx.timings, "B.blur");
         bool glossy = false;
         for (const Brdf& b : brdfs) glossy |= b.glossy();
-        discontinuityBlur(reinterpret_cast<float*>(light.data()), reinterpret_cast<float*>(scratch.data()), layout.width(), layout.height(), kLightChannels,
-                          glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
+        const int channels = glossy ? kLightChannels : kDiffuseChannels;
+        float* data = reinterpret_cast<float*>(light.data());
+        // The gather's spare buffer serves as scratch where there is one; else the blur takes its own, of `channels` floats a pixel.
+        if (scratch.size() == light.size())
+            discontinuityBlur(data, reinterpret_cast<float*>(scratch.data()), layout.width(), layout.height(), kLightChannels, channels, disc, p_.radius);
+        else discontinuityBlur(data, layout.width(), layout.height(), kLightChannels, channels, disc, p_.radius);
     }
 
     Image compose(const Scene& scene, const GBuffer& g, const LightBuffer& light,
@@ -245,7 +255,9 @@ const TechniqueRegistrar registrar{{
     ParamTable("lighting.vpl_deferred",
                {intParam("vpls", 480, 1, 1 << 22, "light paths; each leaves a VPL on the light and one where it first lands"),
                 stringParam("interleave", "4x4", "interleaving pattern n x m (1x1: plain deferred shading, every VPL at every pixel)", checkPair),
-                enumParam("split", "one_pass", {"one_pass", "two_pass"}, "G-buffer split/gather: texel by texel (fastest on CPUs), or block split then block translation"),
+                enumParam("split", "fused", {"fused", "one_pass", "two_pass"},
+                          "sub-buffers: read and written through the interleave by the shading pass (fused, no copies), or split and gathered "
+                          "by copies around it (BS and BG passes): texel by texel, or block split then block translation"),
                 stringParam("block", "16x16", "block size p x q of the two-pass split (multiples of n and m; by default rounded up to them)", checkPair),
                 boolParam("visibility", true, "shadow rays per VPL and texel (SSM); false ignores visibility (SNSM)"),
                 floatParam("clamp", 0.05, 0, 10, "bounce VPLs' geometry term is clamped at 1/(clamp*scene diagonal)^2; 0 = no clamp"),
@@ -259,7 +271,7 @@ const TechniqueRegistrar registrar{{
     [](const Scene& scene, const ParamSet& p) { return std::make_unique<VplDeferred>(scene, p); },
     /*motionBlur=*/false,
     /*renders=*/Content::VolumesAndMeshes,
-    /*bytesPerPixel=*/224,  // G-buffer, its split copy, AOVs (217 measured)
+    /*bytesPerPixel=*/256,  // G-buffer, light, AOVs: 173 measured fused, 253 with split=one_pass copies
     /*reference=*/{"mesh.pathtrace", {}, 4096},
     /*knobs=*/{{"vpls", {"64", "256", "1024", "4096"}}, {"interleave", {"8x8", "4x4", "1x1"}}},
 }};

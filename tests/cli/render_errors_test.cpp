@@ -112,7 +112,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"VdbCutShort", "$D/cut.vdb --res 8x8", "the file is cut short (grid 1 ends at byte "},
         BadInputCase{"ImageAboveMemory", "builtin:sphere --res 65536x65536", "needs about 128 GiB (32 bytes per pixel for its image and buffers"},
         BadInputCase{"DeferredBuffersAboveMemory", "$D/tri.obj --technique lighting.vpl_deferred --res 16384x16384 --max-memory 40",
-                     "a 16384x16384 render with lighting.vpl_deferred needs about 56 GiB (224 bytes per pixel"},
+                     "a 16384x16384 render with lighting.vpl_deferred needs about 64 GiB (256 bytes per pixel"},
         BadInputCase{"ImageAboveMaxMemory", "builtin:sphere --res 1024x1024 --max-memory 0.01",
                      "above the 0.01 GiB limit (--max-memory GiB"},
         BadInputCase{"BadSpp", "builtin:sphere --spp 0", "--spp 0 is outside"},
