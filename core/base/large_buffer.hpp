@@ -6,6 +6,8 @@
 // first, which capped its thread scaling. A 2 MiB-aligned mapping the
 // kernel is asked to back with huge pages faults once per 2 MiB. Where the
 // kernel declines (transparent huge pages off), small pages serve as before.
+// A released buffer's mapping is kept for the next buffer of about its
+// size (large_buffer.cpp), so the next frame finds its pages mapped.
 //
 // LargeBuffer<T> value-initialises like std::vector; FreshBuffer<T> leaves
 // trivial elements uninitialised, for buffers a parallel loop fills whole
@@ -29,6 +31,9 @@ constexpr std::size_t kLargeBufferBytes = std::size_t(1) << 20;
 
 void* allocateLargePages(std::size_t bytes);  // throws std::bad_alloc
 void releaseLargePages(void* p, std::size_t bytes) noexcept;
+// Whether this thread's last allocateLargePages reused a released buffer's
+// mapping (its contents are then that buffer's, not zero).
+bool lastLargePagesReused();
 
 template <class T, bool ValueInit>
 struct LargePageAllocator {
@@ -70,30 +75,34 @@ using LargeBuffer = std::vector<T, LargePageAllocator<T, true>>;
 template <class T>
 using FreshBuffer = std::vector<T, LargePageAllocator<T, false>>;
 
-// Whether a fresh large buffer arrives zero-filled (an anonymous mapping).
-#ifdef __linux__
-constexpr bool kLargeBuffersArriveZeroed = true;
-#else
-constexpr bool kLargeBuffersArriveZeroed = false;
-#endif
-
-// n zero elements. A large buffer is zero as the kernel hands it over, so
-// no thread writes it here: the pass that fills it touches its pages first,
-// on every thread at once, instead of one thread zeroing it all up front.
-template <class T>
-FreshBuffer<T> zeroedBuffer(std::size_t n) {
-    static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_copyable_v<T>);
-    FreshBuffer<T> buffer(n);
-    if (!(kLargeBuffersArriveZeroed && n * sizeof(T) >= kLargeBufferBytes)) std::memset(buffer.data(), 0, n * sizeof(T));
-    return buffer;
-}
-
 // Loops over [0, n) in chunks on every thread, so that a fresh buffer's
 // pages are first touched by all of them, not by one.
 template <class Fn>
 void forChunksInParallel(std::size_t n, const Fn& fn) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t(1) << 14),
                       [&](const tbb::blocked_range<std::size_t>& r) { fn(r.begin(), r.end()); });
+}
+
+// Whether a fresh large mapping arrives zero-filled (an anonymous mapping).
+#ifdef __linux__
+constexpr bool kLargeBuffersArriveZeroed = true;
+#else
+constexpr bool kLargeBuffersArriveZeroed = false;
+#endif
+
+// n zero elements. A fresh large mapping is zero as the kernel hands it
+// over, so no thread writes it here: the pass that fills it touches its
+// pages first, on every thread at once, instead of one thread zeroing it
+// all up front. A reused mapping is cleared on every thread.
+template <class T>
+FreshBuffer<T> zeroedBuffer(std::size_t n) {
+    static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_copyable_v<T>);
+    FreshBuffer<T> buffer(n);
+    const bool large = n * sizeof(T) >= kLargeBufferBytes;
+    if (!large) std::memset(buffer.data(), 0, n * sizeof(T));
+    else if (!kLargeBuffersArriveZeroed || lastLargePagesReused())
+        forChunksInParallel(n, [&](std::size_t i0, std::size_t i1) { std::memset(buffer.data() + i0, 0, (i1 - i0) * sizeof(T)); });
+    return buffer;
 }
 
 // Sets [begin, begin + n) to `value`, in parallel.

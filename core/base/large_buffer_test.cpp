@@ -61,5 +61,51 @@ TEST(LargeBuffer, ZeroedBuffersAreZeroLargeOrSmall) {
     EXPECT_TRUE(std::all_of(small.begin(), small.end(), [](int v) { return v == 0; }));
 }
 
+std::uintptr_t hugePageOf(const void* p) { return reinterpret_cast<std::uintptr_t>(p) & ~((std::uintptr_t(2) << 20) - 1); }
+
+// A released buffer's mapping serves the next buffer of about its size, so
+// a frame sequence finds its pages mapped; what was left in it never shows
+// through a buffer that promises zeros or values.
+TEST(LargeBuffer, AReleasedMappingServesTheNextBufferOfItsSizeCleared) {
+    std::uintptr_t first = 0;
+    {
+        FreshBuffer<float> dirty(kLarge, 7.0f);
+        first = hugePageOf(dirty.data());
+    }
+    FreshBuffer<float> reused(kLarge);
+    EXPECT_TRUE(lastLargePagesReused());
+    EXPECT_EQ(hugePageOf(reused.data()), first);
+    EXPECT_EQ(reused[kLarge / 2], 7.0f);  // what the last buffer left: a FreshBuffer promises no values
+    reused = FreshBuffer<float>();
+    FreshBuffer<float> zero = zeroedBuffer<float>(kLarge);
+    EXPECT_TRUE(lastLargePagesReused());
+    EXPECT_TRUE(std::all_of(zero.begin(), zero.end(), [](float v) { return v == 0.0f; }));
+    std::fill(zero.begin(), zero.end(), 3.0f);
+    zero = FreshBuffer<float>();
+    LargeBuffer<float> valued(kLarge);
+    EXPECT_TRUE(std::all_of(valued.begin(), valued.end(), [](float v) { return v == 0.0f; }));
+}
+
+// A buffer much smaller than a kept mapping does not take it (the mapping
+// stays for a buffer of its own size), and one larger cannot.
+TEST(LargeBuffer, KeptMappingsServeOnlyBuffersOfAboutTheirSize) {
+    std::uintptr_t kept = 0;
+    {
+        FreshBuffer<float> big(4 * kLarge);
+        big.back() = 1.0f;
+        kept = hugePageOf(big.data());
+    }
+    FreshBuffer<float> small = zeroedBuffer<float>(kLarge);
+    EXPECT_NE(hugePageOf(small.data()), kept);
+    EXPECT_TRUE(std::all_of(small.begin(), small.end(), [](float v) { return v == 0.0f; }));
+    FreshBuffer<float> larger = zeroedBuffer<float>(8 * kLarge);
+    EXPECT_NE(hugePageOf(larger.data()), kept);
+    larger.back() = 2.0f;  // all of it is mapped
+    FreshBuffer<float> same = zeroedBuffer<float>(4 * kLarge);
+    EXPECT_TRUE(lastLargePagesReused());
+    EXPECT_EQ(hugePageOf(same.data()), kept);
+    EXPECT_EQ(same.back(), 0.0f);
+}
+
 }  // namespace
 }  // namespace weft
