@@ -24,6 +24,7 @@ struct ShadeTask {
 };
 
 constexpr int kShadeTile = 32;
+constexpr int kRayBlock = 4;
 
 std::vector<ShadeTask> shadeTasks(const SubBufferLayout& L) {
     std::vector<ShadeTask> tasks;
@@ -53,14 +54,18 @@ void shadeTask(const Scene& scene, const ShadeSource& src, const SubBufferLayout
                const ShadeConfig& cfg, LightBuffer& out, TaskCounts& counts, Counters& counters) {
     const int i = task.subBuffer % L.n(), j = task.subBuffer / L.n();
     // The tile's texels, copied once: every VPL of the subset reads them again.
+    // In 4x4 blocks: Embree packs a coherent stream 16 rays at a time, and a
+    // block's rays leave a VPL in closer directions than a row's.
     std::vector<std::size_t> index;
     std::vector<ShadeTexel> texels;
-    for (int r = task.y0; r < task.y1; ++r)
-        for (int x = task.x0; x < task.x1; ++x) {
-            const std::size_t o = texelIndex(src, L, i, j, x, r);
-            const ShadeTexel t = src.split ? (*src.split)[o] : ShadeTexel(src.gbuffer->texels[o]);
-            if (!t.background()) index.push_back(o), texels.push_back(t);
-        }
+    for (int by = task.y0; by < task.y1; by += kRayBlock)
+        for (int bx = task.x0; bx < task.x1; bx += kRayBlock)
+            for (int r = by; r < std::min(task.y1, by + kRayBlock); ++r)
+                for (int x = bx; x < std::min(task.x1, bx + kRayBlock); ++x) {
+                    const std::size_t o = texelIndex(src, L, i, j, x, r);
+                    const ShadeTexel t = src.split ? (*src.split)[o] : ShadeTexel(src.gbuffer->texels[o]);
+                    if (!t.background()) index.push_back(o), texels.push_back(t);
+                }
     std::vector<VplShading> shading(texels.size());
     std::vector<LightTexel> light(texels.size(), LightTexel{});
     std::vector<RTCRay> rays;
