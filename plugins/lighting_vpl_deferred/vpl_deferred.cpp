@@ -9,16 +9,16 @@
 //   SSM / SNSM  shading of each sub-buffer with its own VPL subset, with
 //         Embree visibility per VPL (`visibility=true`) or without
 //   BG    gathering the light buffer back
-// By default (`split=fused`) the shading pass reads each sub-buffer's
-// texels from the G-buffer through the interleave and writes their light
-// in image order: BS and BG only feed it and take from it, so they are
-// fused into it (same image to the bit, two frame-sized copies fewer).
 //   KK    Kollig-Keller compensation of the geometry-term clamp (`clamp`,
 //         `bias_compensation` rays per pixel)
 //   DB    discontinuity buffer, B: discontinuity-aware separable Gaussian blur
 //   C     compose: albedos applied after the blur, point/directional lights
 //         (exact, every pixel), emission seen directly
 //   VT    with volumes: the transmittance from the eye to every texel
+// By default (`split=fused`) the shading pass reads each sub-buffer's
+// texels from the G-buffer through the interleave and writes their light
+// in image order: BS and BG only feed it and take from it, so they are
+// fused into it (same image to the bit, two frame-sized copies fewer).
 // `interleave=1x1` has no BS/BG: plain deferred shading, every VPL at every
 // pixel. Each pixel of an n x m pattern sees the VPLs of paths k with
 // k mod (n m) equal to its sub-buffer index.
@@ -142,14 +142,14 @@ public:
             light = shadeSubBuffers(scene, {copies ? &split : nullptr, &g}, layout, vpls, brdfs, cfg, ctx.counters);
         }
         LargeBuffer<ShadeTexel>().swap(split);  // read by no later pass
-        LightBuffer spare = copies ? gatherPass(light, layout, ctx) : LightBuffer{};
+        if (copies) gatherPass(light, layout, ctx);
         if (p_.compensation > 0 && std::isfinite(cfg.gmax)) {
             ScopedTimer t(ctx.timings, "KK.bias_compensation");
             compensateClamping(scene, g, brdfs, cfg, p_.compensation, s.seed, light, ctx.counters);
         }
         std::vector<std::uint8_t> disc;
         { ScopedTimer t(ctx.timings, "DB.discontinuity"); disc = discontinuityBuffer(g, p_.thresholds); }
-        if (p_.filter && layout.count() > 1) blurPass(light, spare, disc, brdfs, layout, ctx);
+        if (p_.filter && layout.count() > 1) blurPass(light, disc, brdfs, layout, ctx);
         ScopedTimer t(ctx.timings, "C.compose");
         return compose(scene, g, light, disc, eyeT, layout, brdfs, cfg, ctx.counters);
     }
@@ -175,31 +175,24 @@ private:
         return split;
     }
 
-    // BG: the light buffer back in image order. Returns the buffer in
-    // sub-buffer order, free for the blur (a fresh frame-sized buffer costs
-    // its page faults again).
-    LightBuffer gatherPass(LightBuffer& light, const SubBufferLayout& layout, RenderContext& ctx) const {
-        if (layout.count() == 1) return {};
+    // BG: the light buffer back in image order.
+    void gatherPass(LightBuffer& light, const SubBufferLayout& layout, RenderContext& ctx) const {
         ScopedTimer t(ctx.timings, "BG.gather");
         LightBuffer gathered, scratch;
         if (p_.twoPass) gatherTwoPass(light, gathered, scratch, layout, p_.p, p_.q);
         else gatherOnePass(light, gathered, layout);
         std::swap(light, gathered);
-        return gathered;
     }
 
     // B: discontinuity-aware blur of the light factors (glossy ones only when some material is glossy).
-    void blurPass(LightBuffer& light, LightBuffer& scratch, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
+    // Its scratch holds the blurred channels only and may reuse a released buffer's pages (core/base/large_buffer.hpp).
+    void blurPass(LightBuffer& light, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
                   const SubBufferLayout& layout, RenderContext& ctx) const {
         ScopedTimer t(ctx.timings, "B.blur");
         bool glossy = false;
         for (const Brdf& b : brdfs) glossy |= b.glossy();
-        const int channels = glossy ? kLightChannels : kDiffuseChannels;
-        float* data = reinterpret_cast<float*>(light.data());
-        // The gather's spare buffer serves as scratch where there is one; else the blur takes its own, of `channels` floats a pixel.
-        if (scratch.size() == light.size())
-            discontinuityBlur(data, reinterpret_cast<float*>(scratch.data()), layout.width(), layout.height(), kLightChannels, channels, disc, p_.radius);
-        else discontinuityBlur(data, layout.width(), layout.height(), kLightChannels, channels, disc, p_.radius);
+        discontinuityBlur(reinterpret_cast<float*>(light.data()), layout.width(), layout.height(), kLightChannels,
+                          glossy ? kLightChannels : kDiffuseChannels, disc, p_.radius);
     }
 
     Image compose(const Scene& scene, const GBuffer& g, const LightBuffer& light,
