@@ -58,6 +58,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <optional>
 
 #include "core/base/progress.hpp"
 #include "core/base/rng.hpp"
@@ -112,16 +113,23 @@ public:
         Progress progress("volume.adaptive3d", std::int64_t(slices.imax + 1) * std::int64_t(times.size()), s.showProgress);
         Image image;
         for (double time : times) {
-            Pyramid pyramid(scene.camera, volumes, slices, params_.lmax, pw, ph, s.width, s.height);
-            if (accel) pyramid.setSurfaces(surfaces.tHit, slices);
+            std::optional<Pyramid> pyramid;
+            {
+                ScopedTimer timer(ctx.timings, "pyramid");
+                pyramid.emplace(scene.camera, volumes, slices, params_.lmax, pw, ph, s.width, s.height);
+                if (accel) pyramid->setSurfaces(surfaces.tHit, slices);
+            }
             SliceContext sc{volumes, fields, slices, tables, params_.lmax, ctx.counters, time};
             SliceWorkers workers(sc);
-            for (int i = 0; i <= slices.imax; ++i) {
-                projectSlice(pyramid, workers, i);
-                progress.advance();
+            {
+                ScopedTimer timer(ctx.timings, "slices");
+                for (int i = 0; i <= slices.imax; ++i) {
+                    projectSlice(*pyramid, workers, i);
+                    progress.advance();
+                }
             }
             workers.flush();
-            accumulate(image, pyramid.image(s.width, s.height), times.size());
+            accumulate(image, pyramid->image(s.width, s.height), times.size());
         }
         progress.finish();
         ctx.counters.add(kSlices, slices.imax + 1);
@@ -221,7 +229,8 @@ private:
 
     // Figure 4 for slice i: levels l_slice down to 0, tiles of a level in
     // parallel. Off the full slices a pixel does work only when it is due,
-    // so tiles with nothing due are passed over whole.
+    // so tiles with nothing due are passed over whole; on full slices,
+    // quiet tiles with quiet parents (SliceWorker::staysQuiet) are too.
     void projectSlice(Pyramid& pyramid, SliceWorkers& workers, int i) const {
         const int lslice = sliceLevel(i, params_.lmax);
         const bool fullSlice = lslice == params_.lmax;

@@ -36,6 +36,7 @@ Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, 
         level.tilesX = (level.rays.width + kTile - 1) / kTile;
         level.tilesY = (level.rays.height + kTile - 1) / kTile;
         level.tileDueLevel.assign(std::size_t(level.tilesX) * level.tilesY, 0);
+        level.tileQuiet.assign(level.tileDueLevel.size(), 0);
         level.pixelAngle = 2.0 * std::tan(0.5 * camera.fovY * M_PI / 180.0) / imageHeight;
         levels_.push_back(std::move(level));
     }
@@ -44,6 +45,7 @@ Pyramid::Pyramid(const Camera& camera, const std::vector<SliceVolume>& volumes, 
     if (emits) ePrev.assign(sPrev.size(), Vec3f(0.0f));
     iPrev = filledBuffer(n, 0);
     color = zeroedBuffer<SegmentCompositor>(n);
+    quietComposite.assign(levels_[0].tileQuiet.size(), -1);
 }
 
 void Pyramid::setSurfaces(std::vector<double> tHit, const SliceSetup& slices) {
@@ -98,6 +100,12 @@ SliceWorker::SliceWorker(SliceContext& sc) : sc_(sc), data_(sc.volumes), segment
     oracle0_ = &oracleAccessors_[0];
     background0_ = data_.background(0);
     tables0_ = &sc.tables.of(sc.volumes[0]);
+    quietSkips_ = true;
+    for (std::size_t k = 0; k < sc.volumes.size(); ++k)
+        for (float fx : {0.25f, 0.75f}) {
+            const float bg = data_.background(k), top = (1 - fx) * bg + fx * bg;
+            for (float fy : {0.25f, 0.75f}) quietSkips_ = quietSkips_ && (1 - fy) * top + fy * top == bg;
+        }
 }
 
 
@@ -302,14 +310,55 @@ void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
     dispatch(pyramid, [&](auto c) { compositeOf<c.one, c.surfaces>(pyramid, idx, slice); });
 }
 
+bool SliceWorker::pixelQuiet(const Pyramid& pyramid, int l, int idx) const {
+    const PyramidLevel& level = pyramid.level(l);
+    if (level.d[idx] != float(1 << sc_.lmax)) return false;
+    const std::size_t pixels = level.rays.dir.size();
+    for (std::size_t k = 0; k < sc_.volumes.size(); ++k) {
+        const std::size_t i = k * pixels + idx;
+        const float bg = data_.background(int(k));
+        if (level.s[i] != bg || (emits_ && level.e[i] != Vec3f(0.0f))) return false;
+        if (l == 0 && (pyramid.sPrev[i] != bg || (emits_ && pyramid.ePrev[i] != Vec3f(0.0f)))) return false;
+    }
+    return true;
+}
+
+bool SliceWorker::staysQuiet(const Pyramid& pyramid, int l, int tx, int ty) const {
+    const PyramidLevel& level = pyramid.level(l);
+    if (!level.tileQuiet[std::size_t(ty) * level.tilesX + tx]) return false;
+    // The tile's pixels read coarse pixels (4 tx - 1) .. (4 tx + 4), clamped; likewise in y.
+    const PyramidLevel& coarse = pyramid.level(l + 1);
+    const int cx0 = std::max(0, (kTile / 2 * tx - 1) / kTile), cx1 = std::min(coarse.tilesX - 1, (kTile / 2 * tx + kTile / 2) / kTile);
+    const int cy0 = std::max(0, (kTile / 2 * ty - 1) / kTile), cy1 = std::min(coarse.tilesY - 1, (kTile / 2 * ty + kTile / 2) / kTile);
+    for (int cy = cy0; cy <= cy1; ++cy)
+        for (int cx = cx0; cx <= cx1; ++cx)
+            if (!coarse.tileQuiet[std::size_t(cy) * coarse.tilesX + cx]) return false;
+    return true;
+}
+
 template <bool kOne, bool kSurfaces>
 std::uint8_t SliceWorker::tileOf(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty) {
     PyramidLevel& level = pyramid.level(l);
+    const std::size_t tile = std::size_t(ty) * level.tilesX + tx;
+    const int x0 = tx * kTile, y0 = ty * kTile;
+    const int x1 = std::min(level.rays.width, x0 + kTile), y1 = std::min(level.rays.height, y0 + kTile);
+    // A quiet tile is due on full slices only; where its parents are quiet
+    // too, synthesis would give its pixels the values they hold and their
+    // segments hold only background: nothing to visit but the composite's slice.
+    if (!kSurfaces && l < sc_.lmax && quietSkips_ && staysQuiet(pyramid, l, tx, ty)) {
+        if (l == 0) pyramid.quietComposite[tile] = slice;
+        return std::uint8_t(sc_.lmax);
+    }
+    if (l == 0 && pyramid.quietComposite[tile] >= 0) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) pyramid.iPrev[level.rays.index(x, y)] = pyramid.quietComposite[tile];
+        pyramid.quietComposite[tile] = -1;
+    }
     const float sampleBelow = float(2 << l);  // 2^(l+1)
-    const int x1 = std::min(level.rays.width, (tx + 1) * kTile), y1 = std::min(level.rays.height, (ty + 1) * kTile);
     std::uint8_t minDue = 255;
-    for (int y = ty * kTile; y < y1; ++y)
-        for (int x = tx * kTile; x < x1; ++x) {
+    bool quiet = !kSurfaces;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
             const int idx = level.rays.index(x, y);
             if (kSurfaces && l == 0 && slice > pyramid.surfaces.lo[0][idx]) {  // behind its surface: nothing left to do
                 level.d[idx] = float(1 << sc_.lmax);
@@ -322,7 +371,9 @@ std::uint8_t SliceWorker::tileOf(Pyramid& pyramid, int l, int lslice, int slice,
             if (l == sc_.lmax || d < sampleBelow) sampleOf<kOne, kSurfaces>(pyramid, l, idx, slice);
             if (accumulate) compositeOf<kOne, kSurfaces>(pyramid, idx, slice);
             minDue = std::min(minDue, dueLevel(level.d[idx]));
+            if (!kSurfaces) quiet = quiet && pixelQuiet(pyramid, l, idx);
         }
+    level.tileQuiet[tile] = quiet;
     return minDue;
 }
 

@@ -46,6 +46,10 @@ struct PyramidLevel {
     FreshBuffer<float> d;  // sampling distance, slices
     int tilesX = 0, tilesY = 0;
     std::vector<std::uint8_t> tileDueLevel;  // min dueLevel(d) over the tile
+    // 1 where every pixel of the tile holds the background (no emission) at
+    // the longest distance: the tile is then due on full slices only, and
+    // there, if its parents are quiet too, it stays as it is.
+    std::vector<std::uint8_t> tileQuiet;
     // Angle between neighbouring level-0 rays: at distance t from the eye
     // they are t * pixelAngle voxels apart.
     double pixelAngle = 0;
@@ -77,6 +81,10 @@ public:
     FreshBuffer<float> sPrev;  // [volume * pixels + pixel]
     std::vector<Vec3f> ePrev;  // the same for emission; empty when no volume emits
     FreshBuffer<int> iPrev;
+    // Per level-0 tile: the last slice on which the tile was passed over as
+    // quiet (-1: none since its pixels were last visited). Its pixels were
+    // composited there, so their iPrev is that slice.
+    std::vector<int> quietComposite;
     FreshBuffer<SegmentCompositor> color;
     SurfaceSlices surfaces;
     // Fills `surfaces` from level 0's distances (infinity: no surface).
@@ -121,6 +129,11 @@ private:
     };
     template <typename F> decltype(auto) dispatch(const Pyramid& pyramid, F&& f);
     template <bool kOne, bool kSurfaces> std::uint8_t tileOf(Pyramid& pyramid, int l, int lslice, int slice, int tx, int ty);
+    // Whether a tile of level l stays as it is on a full slice: it is quiet
+    // and so are the coarse tiles its pixels are synthesized from.
+    bool staysQuiet(const Pyramid& pyramid, int l, int tx, int ty) const;
+    // Background at the longest distance; on level 0 also composited last with the background.
+    bool pixelQuiet(const Pyramid& pyramid, int l, int idx) const;
     template <bool kOne, bool kSurfaces> void synthesizeOf(Pyramid& pyramid, int l, int x, int y, int idx, int slice);
     template <bool kOne, bool kSurfaces> void sampleOf(Pyramid& pyramid, int l, int idx, int slice);
     template <bool kOne, bool kSurfaces> void compositeOf(Pyramid& pyramid, int idx, int slice);
@@ -146,6 +159,9 @@ private:
     // take the general path.
     bool one_ = false;
     bool emits_ = false;  // some volume emits
+    // Synthesizing from four background parents gives the background to the
+    // bit (always for a background of 0), so quiet tiles may be passed over.
+    bool quietSkips_ = false;
     const ScalarSampler* sampler0_ = nullptr;
     openvdb::FloatGrid::ConstAccessor* oracle0_ = nullptr;
     float background0_ = 0;

@@ -62,6 +62,22 @@ TEST(HwsimKraus, ReplaysGiveTheCoreImageAndSamples) {
     }
 }
 
+// The core passes over tiles whose pixels and parents hold nothing but the
+// background at the longest distance (the cloud's empty surroundings); the
+// replays visit every due pixel. The image and samples stay the same, the
+// syntheses are fewer.
+TEST(HwsimKraus, QuietTilesPassedOverKeepTheImage) {
+    const RenderOutcome core = test::render("builtin:cloud", "256x208", {"oracle=gradient_alpha", "lmax=3"}, "volume.adaptive3d");
+    const hwsim::ReplayResult r = hwsim::runReplay(
+        "kraus.fig4", hwsim::findProfile("ideal"), {{"width", "256"}, {"height", "208"}, {"oracle", "gradient_alpha"}, {"lmax", "3"}});
+    ASSERT_TRUE(r.image.has_value());
+    EXPECT_EQ(compareImages(*r.image, core.image).overall.maxAbs, 0.0);
+    const CounterMap& replay = r.variants.at(0).counters;
+    EXPECT_EQ(replay.at("volume.samples"), core.counters.at("volume.samples"));
+    EXPECT_EQ(replay.at("composite.ops"), core.counters.at("composite.ops"));
+    EXPECT_LT(core.counters.at("synthesis.ops"), replay.at("synthesis.ops") * 3 / 4);
+}
+
 TEST(HwsimKraus, TheWavyOracleSkipsSamples) {
     EXPECT_LT(coreRender("test.hwsim_wavy").samples, coreRender("minimum").samples * 2 / 3);
 }
