@@ -40,16 +40,17 @@ double sliceEmission(const openvdb::Vec3s& e, double spacing) {
 
 namespace {
 
-// How many rings the field holds: ring k gets its own distance only while
-// ring k-1's is below the cap, and rings past the volume's extent hold no
-// lookup (those read the cap), so the growth stops there too: a cap of
+// How many rings the field holds beyond the features (ring 0): ring k is
+// stored only while its distance is below the cap (farther voxels read the
+// cap as the grid's background), and rings past the volume's extent hold
+// no lookup (those read the cap), so the growth stops there too: a cap of
 // thousands of voxels over a small grid would otherwise grow the field for
 // minutes into gigabytes.
 int ringCount(const OracleContext& ctx, float cap) {
     const openvdb::Coord extent = ctx.volume.indexBox().dim();
     const int rings = std::max({extent.x(), extent.y(), extent.z()}) + 2;
     int k = 0;
-    while (k < rings && ringDistance(k, ctx, cap) < cap) ++k;
+    while (k < rings && ringDistance(k + 1, ctx, cap) < cap) ++k;
     return k;
 }
 
@@ -133,14 +134,21 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
     if (K > kMaxLeafReach) throw std::invalid_argument("distanceFieldByBlocks: " + std::to_string(K) + " rings, at most " + std::to_string(kMaxLeafReach));
     MaskTree mask(features.tree());
     mask.voxelizeActiveTiles();
-    float value[kMaxLeafReach + 1];
+    float value[kMaxLeafReach + 2];
     for (int k = 0; k <= K; ++k) value[k] = ringDistance(k, ctx, cap);
     FloatGrid::Ptr distance = FloatGrid::create(cap);
     distance->setTransform(features.transform().copy());
+    value[K + 1] = cap;  // LeafDistances' "farther than K"
     addLeavesNear(distance->tree(), mask, K, [&](const Coord& origin, const std::uint8_t* d) {
         auto leaf = std::make_unique<FloatTree::LeafNodeType>(origin, cap, false);
-        for (Index n = 0; n < FloatTree::LeafNodeType::SIZE; ++n)
-            if (d[n] <= K) leaf->setValueOn(n, value[d[n]]);
+        float* values = leaf->buffer().data();
+        for (Index n = 0; n < FloatTree::LeafNodeType::SIZE; ++n) values[n] = value[d[n]];
+        // The value mask a 64-voxel word at a time: on where d <= K.
+        for (Index w = 0; w < FloatTree::LeafNodeType::SIZE / 64; ++w) {
+            std::uint64_t on = 0;
+            for (Index b = 0; b < 64; ++b) on |= std::uint64_t(d[64 * w + b] <= K) << b;
+            leaf->getValueMask().template getWord<std::uint64_t>(w) = on;
+        }
         return leaf;
     });
     return fieldOf(distance, cap);
