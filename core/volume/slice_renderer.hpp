@@ -2,13 +2,14 @@
 // What the slice-based volume techniques (volume.preint, volume.adaptive3d)
 // share: their common parameters, the scene checks, and sampling the data
 // at a point of a slice as a normalised scalar.
-#include "core/volume/leaf_sampler.hpp"
-
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/base/params.hpp"
-#include "core/volume/preintegration.hpp"
 #include "core/scene/scene.hpp"
+#include "core/volume/leaf_sampler.hpp"
+#include "core/volume/preintegration.hpp"
 
 namespace weft {
 
@@ -31,19 +32,23 @@ const Volume& requireSliceableVolume(const Scene& scene, const std::string& tech
 class ScalarSampler {
 public:
     explicit ScalarSampler(const Volume& volume)
-        : volume_(volume), accessor_(volume.grid->getConstAccessor()), sampler_(accessor_, volume.grid->transform()),
-          background_(float(volume.tf.normalize(volume.grid->background()))) {}
+        : accessor_(volume.grid->getConstAccessor()), sampler_(accessor_, volume.grid->transform()),
+          background_(float(volume.tf.normalize(volume.grid->background()))), rangeMin_(volume.tf.rangeMin()),
+          rangeWidth_(volume.tf.rangeMax() - volume.tf.rangeMin()) {}
+    // TransferFunction::normalize, inline: the slice loops call it per sample.
     float sample(const openvdb::Vec3d& indexPos) const {
-        return float(volume_.tf.normalize(sampler_.isSample(indexPos)));
+        const double value = sampler_.isSample(indexPos);
+        if (!std::isfinite(value)) return 0.0f;  // NaN voxels read as empty
+        return float(std::clamp((value - rangeMin_) / rangeWidth_, 0.0, 1.0));
     }
     float background() const { return background_; }
 
 private:
     using Accessor = openvdb::FloatGrid::ConstAccessor;
-    const Volume& volume_;
     Accessor accessor_;
     mutable LeafSampler sampler_;  // keeps the last leaf: one per thread
     float background_;
+    double rangeMin_, rangeWidth_;
 };
 
 }  // namespace weft
