@@ -35,7 +35,7 @@ Volume glowingCube(float glow) {
 }
 
 float distanceAt(const OracleField& f, const openvdb::Coord& c) {
-    const auto acc = f.distance->getConstAccessor();
+    const auto acc = f.accessor();
     return f.at(acc, openvdb::Vec3d(c.x(), c.y(), c.z()));
 }
 
@@ -56,9 +56,9 @@ TEST(EmissionOracle, AChangingGlowIsAFeatureWhereTheDensityIsFlat) {
         const OracleInfo& oracle = oracles().get(name);
         const OracleField without = oracle.build({plain, 1.0, 3, 0.01});
         const OracleField with = oracle.build({glowing, 1.0, 3, 0.01});
-        ASSERT_TRUE(with.distance) << name;
+        ASSERT_TRUE(with.rings) << name;
         EXPECT_EQ(distanceAt(with, step), 1.0f) << name;  // the step is sampled densely
-        if (without.distance) {
+        if (without.rings) {
             EXPECT_GE(distanceAt(without, step), distanceAt(with, step)) << name;
         }
     }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -58,12 +59,18 @@ float fieldCap(const OracleContext& ctx) {
     return std::max(float(ctx.sliceSpacing), float(ctx.sliceSpacing * double(1 << ctx.lmax)));
 }
 
-OracleField fieldOf(openvdb::FloatGrid::Ptr distance, float cap) {
+// A field of `rings` whose index k (at most `stored`) holds ring k's distance, the rest the cap.
+OracleField fieldOf(std::shared_ptr<const RingTree> rings, int stored, const OracleContext& ctx, float cap) {
     OracleField field;
     field.constant = cap;
-    field.distance = std::move(distance);
+    field.rings = std::move(rings);
+    field.distances.assign(256, cap);
+    for (int k = 0; k <= stored; ++k) field.distances[k] = ringDistance(k, ctx, cap);
     return field;
 }
+
+// Rings beyond this share its index (and distance, which is never more than theirs).
+constexpr int kLastRingIndex = kFarRing - 1;
 
 }  // namespace
 
@@ -99,11 +106,9 @@ openvdb::MaskGrid::Ptr activeAndFaceNeighbours(const openvdb::Vec3SGrid& grid, c
 
 OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx) {
     using namespace openvdb;
-    const float minimum = float(ctx.sliceSpacing), cap = fieldCap(ctx);
-    FloatGrid::Ptr distance = FloatGrid::create(cap);
-    distance->setTransform(features.transform().copy());
-    distance->setTree(std::make_shared<FloatTree>(features.tree(), cap, minimum, TopologyCopy()));
-    distance->tree().voxelizeActiveTiles();
+    const float cap = fieldCap(ctx);
+    auto distance = std::make_shared<RingTree>(features.tree(), kFarRing, std::uint8_t(0), TopologyCopy());
+    distance->voxelizeActiveTiles();
     // Ring k (Chebyshev distance exactly k) is the last ring grown by one
     // voxel (26-neighbourhood) less every voxel already given a distance, so
     // each step dilates a one-voxel shell, not the whole field.
@@ -112,19 +117,19 @@ OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const Oracle
     const int rings = ringCount(ctx, cap);
     for (int k = 1; k <= rings; ++k) {
         tools::dilateActiveValues(ring, 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
-        ring.topologyDifference(distance->tree());
+        ring.topologyDifference(*distance);
         tools::pruneInactive(ring);
         ring.voxelizeActiveTiles();
         if (ring.empty()) break;
-        distance->tree().topologyUnion(ring);  // new voxels hold the background (the cap) until set below
-        const float value = ringDistance(k, ctx, cap);
+        distance->topologyUnion(ring);  // new voxels hold the background (the cap) until set below
+        const std::uint8_t index = std::uint8_t(std::min(k, kLastRingIndex));
         tree::LeafManager<MaskTree> leaves(ring);
         leaves.foreach([&](MaskTree::LeafNodeType& leaf, std::size_t) {
-            FloatTree::LeafNodeType* target = distance->tree().probeLeaf(leaf.origin());
-            for (auto it = leaf.cbeginValueOn(); it; ++it) target->setValueOnly(it.pos(), value);
+            RingTree::LeafNodeType* target = distance->probeLeaf(leaf.origin());
+            for (auto it = leaf.cbeginValueOn(); it; ++it) target->setValueOnly(it.pos(), index);
         });
     }
-    return fieldOf(distance, cap);
+    return fieldOf(std::move(distance), std::min(rings, kLastRingIndex), ctx, cap);
 }
 
 OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const OracleContext& ctx) {
@@ -134,24 +139,21 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
     if (K > kMaxLeafReach) throw std::invalid_argument("distanceFieldByBlocks: " + std::to_string(K) + " rings, at most " + std::to_string(kMaxLeafReach));
     MaskTree mask(features.tree());
     mask.voxelizeActiveTiles();
-    float value[kMaxLeafReach + 2];
-    for (int k = 0; k <= K; ++k) value[k] = ringDistance(k, ctx, cap);
-    FloatGrid::Ptr distance = FloatGrid::create(cap);
-    distance->setTransform(features.transform().copy());
-    value[K + 1] = cap;  // LeafDistances' "farther than K"
-    addLeavesNear(distance->tree(), mask, K, [&](const Coord& origin, const std::uint8_t* d) {
-        auto leaf = std::make_unique<FloatTree::LeafNodeType>(origin, cap, false);
-        float* values = leaf->buffer().data();
-        for (Index n = 0; n < FloatTree::LeafNodeType::SIZE; ++n) values[n] = value[d[n]];
+    auto distance = std::make_shared<RingTree>(kFarRing);
+    // LeafDistances gives each voxel its ring (K + 1: farther, whose index
+    // holds the cap as the background's does): the leaf's values as they are.
+    addLeavesNear(*distance, mask, K, [&](const Coord& origin, const std::uint8_t* d) {
+        auto leaf = std::make_unique<RingTree::LeafNodeType>(origin, kFarRing, false);
+        std::memcpy(leaf->buffer().data(), d, RingTree::LeafNodeType::SIZE);
         // The value mask a 64-voxel word at a time: on where d <= K.
-        for (Index w = 0; w < FloatTree::LeafNodeType::SIZE / 64; ++w) {
+        for (Index w = 0; w < RingTree::LeafNodeType::SIZE / 64; ++w) {
             std::uint64_t on = 0;
             for (Index b = 0; b < 64; ++b) on |= std::uint64_t(d[64 * w + b] <= K) << b;
             leaf->getValueMask().template getWord<std::uint64_t>(w) = on;
         }
         return leaf;
     });
-    return fieldOf(distance, cap);
+    return fieldOf(std::move(distance), K, ctx, cap);
 }
 
 // The distance field of a mask (distanceToFeatures without emission): by

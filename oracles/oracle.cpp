@@ -7,15 +7,15 @@ namespace weft {
 OracleField paddedByReach(const OracleField& field, double reach, double minDistance) {
     if (!(reach > 0)) return field;
     const auto shrink = [&](float d) { return float(std::max(minDistance, double(d) - reach)); };
-    OracleField out;
+    OracleField out = field;  // the same rings: only the distances they index shrink
     out.constant = shrink(field.constant);
-    out.shift = field.shift;
-    if (!field.distance) return out;
-    openvdb::FloatGrid::Ptr grid = field.distance->deepCopy();
-    for (auto v = grid->tree().beginValueAll(); v; ++v) v.setValue(shrink(*v));  // voxels and tiles, on or off
-    grid->tree().root().setBackground(shrink(grid->background()), /*updateChildNodes=*/false);  // its values were all shrunk above
-    out.distance = grid;
+    for (float& d : out.distances) d = shrink(d);
     return out;
+}
+
+RingAccessor OracleField::accessor() const {
+    static const RingTree kEmpty(kFarRing);
+    return RingAccessor(rings ? *rings : kEmpty);
 }
 
 OracleRegistry& oracles() {

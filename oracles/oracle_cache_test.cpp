@@ -30,8 +30,8 @@ TEST(OracleCache, AnEqualRequestIsServedFromTheCache) {
     const SharedOracleField second = sharedOracleField(gradientAlpha(), {v, 1.0, 3, 0.01});
     EXPECT_FALSE(first.reused);
     EXPECT_TRUE(second.reused);
-    ASSERT_TRUE(first.field.distance);
-    EXPECT_EQ(first.field.distance.get(), second.field.distance.get());
+    ASSERT_TRUE(first.field.rings);
+    EXPECT_EQ(first.field.rings.get(), second.field.rings.get());
 }
 
 TEST(OracleCache, EveryInputOfTheFieldMisses) {

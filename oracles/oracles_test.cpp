@@ -93,7 +93,7 @@ TEST(FeatureDistance, StopsGrowingAtTheVolumesExtent) {
     // A cap of 64 * 2^6 voxels: grown ring by ring to the cap, the field would fill billions of voxels.
     const OracleField f = distanceToFeatures(features, {v, 64.0, 6, 0.01});
     EXPECT_FLOAT_EQ(distanceAt(f, Coord(8, 8, 8)), 64.0f);
-    EXPECT_LT(f.distance->activeVoxelCount(), openvdb::Index64(64 * 64 * 64));
+    EXPECT_LT(f.rings->activeVoxelCount(), openvdb::Index64(64 * 64 * 64));
 }
 
 // The field by blocks (leaf by leaf, in parallel) equals the field grown
@@ -114,13 +114,13 @@ TEST(FeatureDistance, BlocksAndRingsGiveTheSameField) {
         const OracleField rings = distanceFieldByRings(features, ctx), blocks = distanceFieldByBlocks(features, ctx);
         SCOPED_TRACE("spacing " + std::to_string(c.spacing) + " lmax " + std::to_string(c.lmax));
         EXPECT_EQ(blocks.constant, rings.constant);
-        EXPECT_EQ(blocks.distance->background(), rings.distance->background());
-        EXPECT_EQ(blocks.distance->activeVoxelCount(), rings.distance->activeVoxelCount());
-        auto a = rings.distance->getConstAccessor(), b = blocks.distance->getConstAccessor();
+        EXPECT_EQ(blocks.background(), rings.background());
+        EXPECT_EQ(blocks.rings->activeVoxelCount(), rings.rings->activeVoxelCount());
+        const auto a = rings.accessor(), b = blocks.accessor();
         int differ = 0;
         for (int x = -60; x <= 60; ++x)
             for (int y = -60; y <= 60; ++y)
-                for (int z = -60; z <= 60; ++z) differ += a.getValue(Coord(x, y, z)) != b.getValue(Coord(x, y, z));
+                for (int z = -60; z <= 60; ++z) differ += rings.distances[a.getValue(Coord(x, y, z))] != blocks.distances[b.getValue(Coord(x, y, z))];
         EXPECT_EQ(differ, 0);
     }
 }
@@ -137,13 +137,13 @@ TEST(FeatureDistance, PaddingByTheReachShrinksEveryDistance) {
     for (int k = 0; k <= 12; ++k)
         EXPECT_FLOAT_EQ(distanceAt(padded, Coord(k, -k, 0)), std::max(1.0f, distanceAt(f, Coord(k, -k, 0)) - 2.5f)) << k;
     EXPECT_FLOAT_EQ(distanceAt(padded, Coord(5000, 0, 0)), 13.5f);
-    EXPECT_FLOAT_EQ(padded.distance->background(), 13.5f);
+    EXPECT_FLOAT_EQ(padded.background(), 13.5f);
     EXPECT_FLOAT_EQ(paddedByReach(f, 1000, 1.0).atVoxel(Coord(7, 0, 0)), 1.0f);
-    EXPECT_EQ(paddedByReach(f, 0, 1.0).distance, f.distance);
+    EXPECT_EQ(paddedByReach(f, 0, 1.0).rings, f.rings);
     OracleField constant;
     constant.constant = 8;
     EXPECT_FLOAT_EQ(paddedByReach(constant, 3, 1.0).constant, 5.0f);
-    EXPECT_EQ(paddedByReach(constant, 3, 1.0).distance, nullptr);
+    EXPECT_EQ(paddedByReach(constant, 3, 1.0).rings, nullptr);
 }
 
 TEST(TransferFunctionBounds, ExactOverPiecewiseLinearExtinction) {
@@ -214,14 +214,14 @@ TEST(Oracles, AFieldAroundTheIndexOriginIsTheMovedFieldAndKeepsOneTopNode) {
     for (const char* oracle : {"gradient_alpha", "vdb_topology", "majorant"}) {
         const OracleField a = oracles().get(oracle).build({around, 1.0, 3, 0.01});
         const OracleField b = oracles().get(oracle).build({moved, 1.0, 3, 0.01});
-        ASSERT_TRUE(a.distance && b.distance) << oracle;
-        EXPECT_EQ(a.distance->tree().root().childCount(), 1u) << oracle;
-        EXPECT_EQ(a.distance->activeVoxelCount(), b.distance->activeVoxelCount()) << oracle;
+        ASSERT_TRUE(a.rings && b.rings) << oracle;
+        EXPECT_EQ(a.rings->root().childCount(), 1u) << oracle;
+        EXPECT_EQ(a.rings->activeVoxelCount(), b.rings->activeVoxelCount()) << oracle;
         int mismatches = 0;
         for (auto c = openvdb::CoordBBox(Coord(-32), Coord(25)).begin(); c; ++c)
             mismatches += distanceAt(a, *c) != distanceAt(b, *c + Coord(4000));
         EXPECT_EQ(mismatches, 0) << oracle;
-        const auto acc = a.distance->getConstAccessor();  // a lookup between voxels rounds to the nearest
+        const auto acc = a.accessor();  // a lookup between voxels rounds to the nearest
         EXPECT_FLOAT_EQ(a.at(acc, openvdb::Vec3d(-15.4, 2.2, -0.6)), distanceAt(a, Coord(-15, 2, -1))) << oracle;
     }
 }
@@ -231,9 +231,9 @@ TEST(Oracles, AVolumeNearTheEndOfIntRangeIsLookedUpWithoutLeavingIt) {
     // the other side reads the background instead of overflowing.
     const Volume far = boxVolume(2000000000, 2000000040, 0.5);
     const OracleField f = oracles().get("gradient_alpha").build({far, 1.0, 3, 0.01});
-    ASSERT_TRUE(f.distance);
-    const auto acc = f.distance->getConstAccessor();
-    EXPECT_FLOAT_EQ(f.at(acc, openvdb::Vec3d(-1.0e9, 0, 0)), f.distance->background());
+    ASSERT_TRUE(f.rings);
+    const auto acc = f.accessor();
+    EXPECT_FLOAT_EQ(f.at(acc, openvdb::Vec3d(-1.0e9, 0, 0)), f.background());
     EXPECT_FLOAT_EQ(f.at(acc, openvdb::Vec3d(2000000020.2, 2000000019.9, 2000000020)), 8.0f);  // 20 voxels inside: capped
     EXPECT_FLOAT_EQ(f.at(acc, openvdb::Vec3d(2000000000, 2000000020, 2000000020)), 1.0f);     // on a face
 }

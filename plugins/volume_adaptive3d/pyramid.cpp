@@ -90,8 +90,7 @@ Image Pyramid::image(int width, int height) const {
 
 SliceWorker::SliceWorker(SliceContext& sc) : sc_(sc), data_(sc.volumes), segments_(sc.volumes.size()) {
     for (std::size_t k = 0; k < sc.volumes.size(); ++k) {
-        const OracleField& f = sc.fields[k];
-        oracleAccessors_.push_back(f.distance ? f.distance->getConstAccessor() : sc.volumes[k].volume->grid->getConstAccessor());
+        oracleAccessors_.emplace_back(sc.fields[k].accessor());
     }
     emits_ = sceneEmits(sc.volumes);
     data_.setTime(sc.time);
@@ -163,7 +162,7 @@ template <bool kSurfaces>
     const int first = rays.first[idx];
     const bool inside = slice >= first && slice <= rays.last[idx];
     float dVoxels = float(sc_.fields[0].at(*oracle0_, p));
-    oracleSamples_ += inside || sc_.fields[0].distance;
+    oracleSamples_ += inside || sc_.fields[0].rings;
     if (inside) {
         level.s[idx] = sampler0_->sample(p);
         ++samples_, ++samplesPerLevel_[l];
@@ -183,7 +182,7 @@ float SliceWorker::sampleVolumes(PyramidLevel& level, int l, int idx, int slice,
         const int first = rays.firstOf(k, idx);
         const bool inside = slice >= first && slice <= rays.lastOf(k, idx);
         float dVoxels = oracleDistance(k, p);
-        oracleSamples_ += inside || sc_.fields[k].distance;  // a constant oracle costs nothing outside
+        oracleSamples_ += inside || sc_.fields[k].rings;  // a constant oracle costs nothing outside
         float& s = level.s[k * pixels + idx];
         if (emits_) level.e[k * pixels + idx] = inside ? data_.emission(k, p) : Vec3f(0.0f);
         if (inside) {

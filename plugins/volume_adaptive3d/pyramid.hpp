@@ -152,7 +152,7 @@ private:
     float oracleDistance(int k, const Vec3d& p);
 
     SliceSamplers data_;
-    std::deque<openvdb::FloatGrid::ConstAccessor> oracleAccessors_;
+    std::deque<RingAccessor> oracleAccessors_;
     std::vector<PreintSample> segments_;  // one per volume
     // One volume in its own index space (no placement between the reference
     // and it) that emits nothing and stays still; emitting and moving scenes
@@ -163,7 +163,7 @@ private:
     // bit (always for a background of 0), so quiet tiles may be passed over.
     bool quietSkips_ = false;
     const ScalarSampler* sampler0_ = nullptr;
-    openvdb::FloatGrid::ConstAccessor* oracle0_ = nullptr;
+    RingAccessor* oracle0_ = nullptr;
     float background0_ = 0;
     SegmentTables* tables0_ = nullptr;
     std::int64_t samples_ = 0, oracleSamples_ = 0, syntheses_ = 0, composites_ = 0;

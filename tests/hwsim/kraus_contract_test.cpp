@@ -16,19 +16,21 @@
 namespace weft {
 namespace {
 
-// Distances between 1 and 9 slices, varying in waves across the volume.
+// Distances between 1 and 9 slices, varying in waves across the volume
+// (in 64 steps: index i holds 1 + i / 8 slices).
 const OracleRegistrar wavyOracle{{"test.hwsim_wavy", "test: distances in waves of 1..9 slices", [](const OracleContext& ctx) {
     OracleField f;
-    auto grid = openvdb::FloatGrid::create(float(8 * ctx.sliceSpacing));
-    grid->setTransform(ctx.volume.grid->transform().copy());
+    auto rings = std::make_shared<RingTree>(kFarRing);
+    f.distances.assign(256, float(8 * ctx.sliceSpacing));
+    for (int i = 0; i <= 64; ++i) f.distances[i] = float((1 + i / 8.0) * ctx.sliceSpacing);
     const openvdb::CoordBBox box = ctx.volume.grid->evalActiveVoxelBoundingBox();
-    auto acc = grid->getAccessor();
+    openvdb::tree::ValueAccessor<RingTree> acc(*rings);
     for (auto it = box.begin(); it != box.end(); ++it) {
         const openvdb::Coord c = *it;
         const double wave = 0.5 + 0.5 * std::sin(c.x() * 0.35) * std::cos(c.y() * 0.25 + c.z() * 0.1);
-        acc.setValue(c, float((1 + 8 * wave) * ctx.sliceSpacing));
+        acc.setValue(c, std::uint8_t(std::lround(64 * wave)));
     }
-    f.distance = grid;
+    f.rings = rings;
     return f;
 }}};
 
