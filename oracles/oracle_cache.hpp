@@ -5,12 +5,8 @@
 // cost a third of an adaptive render, so it is built once per (oracle,
 // volume, transfer function, spacing, lmax, epsilon).
 //
-// A volume read from a file is identified by its path, grid name, size and
-// modification time (as the sweep's reference cache does) and its transform,
-// so every frame's fresh load of an unchanged file finds it; any other
-// volume (procedural, built in code) by its tree, which the entry keeps alive.
-// An emitting volume's emission grid (which the oracles read too) joins the
-// key by a hash of its content: other emission settings or grids, another field.
+// The volume is known by core/volume/volume_key.hpp's key (its file or its
+// tree, transform, transfer function, emission and box).
 #include "oracles/oracle.hpp"
 
 namespace weft {

@@ -31,7 +31,9 @@
 //               grid's own leaves, OpenVDB HDDA on each grid's index space,
 //               so any affine transform works); the image is unchanged, only
 //               fewer samples are taken. auto (the default) skips where it
-//               pays (emptySpacePays, volume_march.hpp)
+//               pays (emptySpacePays, volume_march.hpp); the skipper is
+//               built once per process for the same volumes
+//               (sharedEmptySpaceSkipper)
 //   offset_pattern  per-pixel offsets of the first sample from a pattern set's
 //               third coordinate: interleaved:4x4 gives the 16 pixels of each
 //               tile 16 different strata of the step (Keller & Heidrich 4.3)
@@ -97,7 +99,7 @@ public:
                             "(volume '" + vol.source + "')");
         requireSurfaceLights(scene, "volume.raymarch");
         if (!scene.volumes.empty() && (skip == "true" || (skip == "auto" && emptySpaceSkippable(scene.volumes)))) {
-            skipper_.emplace(scene.volumes);
+            skipper_ = sharedEmptySpaceSkipper(scene.volumes).skipper;
             if (skip == "auto" && !skipper_->pays()) skipper_.reset();
         }
         // A full march of a dense grid reads it from one array; a skipping
@@ -131,7 +133,7 @@ public:
 
             Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o,
                    const MeshAccel* a, float e, const MarchSettings& m)
-                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_ ? &*r.skipper_ : nullptr),
+                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_.get()),
                   rays(sc.stillCameraRays(st.width, st.height)) {}
             Rgba operator()(const CameraSample& c) {
                 const Ray ray = rays ? rays->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
@@ -162,7 +164,7 @@ public:
 private:
     RaymarchParams params_;
     ImagePlaneOptions plane_;
-    std::optional<EmptySpaceSkipper> skipper_;
+    std::shared_ptr<const EmptySpaceSkipper> skipper_;  // shared with the process's other renders of these volumes
     std::vector<std::unique_ptr<const DenseCopy<openvdb::FloatGrid>>> dense_;  // per volume; null where sparse
 };
 

@@ -4,10 +4,12 @@
 #include <cmath>
 
 #include "core/base/error.hpp"
+#include "core/scene/scene.hpp"
 #include "core/volume/volume.hpp"
 #include "plugins/volume_raymarch/volume_march.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"
+#include "tests/support/vdb_fixtures.hpp"
 
 using namespace weft;
 using weft::test::render;
@@ -161,4 +163,42 @@ TEST(Raymarch, SkipEmptySkipsWhatTheTransferFunctionHides) {
         samples[i++] = skip.counters.at("volume.samples");
     }
     EXPECT_LT(double(samples[1]), 0.95 * double(samples[0]));  // 0.91 measured: the HDDA skips by whole leaves
+}
+
+// The runs of a sweep and the frames of a sequence share one skipper per set
+// of volumes; another transfer function, another set or a moving volume does not.
+TEST(Raymarch, SkippersAreSharedBetweenRendersOfTheSameVolumes) {
+    initVdb();
+    clearSkipperCache();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->tree().fill(openvdb::CoordBBox({0, 0, 0}, {7, 7, 7}), 0.5f, true);
+    const Volume v = volumeOf(grid);
+    const SharedSkipper first = sharedEmptySpaceSkipper({v});
+    const SharedSkipper second = sharedEmptySpaceSkipper({v});
+    EXPECT_FALSE(first.reused);
+    ASSERT_TRUE(second.reused);
+    EXPECT_EQ(first.skipper.get(), second.skipper.get());
+    Volume otherTf = v;
+    otherTf.tf = TransferFunction(0, 1, {{0, {1, 1, 1}, 0}, {1, {1, 1, 1}, 2}});
+    EXPECT_FALSE(sharedEmptySpaceSkipper({otherTf}).reused);
+    EXPECT_FALSE(sharedEmptySpaceSkipper({v, otherTf}).reused);
+    Volume moving = v;
+    moving.motion = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    EXPECT_FALSE(sharedEmptySpaceSkipper({moving}).reused);
+    EXPECT_FALSE(sharedEmptySpaceSkipper({moving}).reused);
+}
+
+// Each frame loads its volume again: an unchanged file finds the skipper
+// its first load built, and the frames' images equal fresh renders'.
+TEST(Raymarch, AFreshLoadOfTheSameFileFindsItsSkipper) {
+    clearSkipperCache();
+    test::TempDir dir;
+    test::writeProceduralVdb(dir / "cloud.vdb", "cloud", 24);
+    const std::string path = (dir / "cloud.vdb").string();
+    EXPECT_FALSE(sharedEmptySpaceSkipper(loadScene(path).volumes).reused);
+    EXPECT_TRUE(sharedEmptySpaceSkipper(loadScene(path).volumes).reused);
+    const Image shared = test::render(path, "32x24", {"skip_empty=true"}, "volume.raymarch").image;
+    clearSkipperCache();
+    const Image fresh = test::render(path, "32x24", {"skip_empty=true"}, "volume.raymarch").image;
+    EXPECT_EQ(shared.data(), fresh.data());
 }

@@ -87,6 +87,19 @@ private:
     bool pays_ = false;
 };
 
+// The skipper of these volumes, shared between renders of one process: a
+// frame sequence of a static volume and the runs of a sweep build it once
+// (core/volume/volume_key.hpp says when two volumes are the same; moving
+// volumes, whose skipper depends on their reach, are not shared). The last
+// kSkipperCacheEntries are kept. Thread-safe.
+struct SharedSkipper {
+    std::shared_ptr<const EmptySpaceSkipper> skipper;
+    bool reused = false;  // found in the cache, not built by this call
+};
+SharedSkipper sharedEmptySpaceSkipper(const std::vector<Volume>& volumes);
+constexpr int kSkipperCacheEntries = 2;
+void clearSkipperCache();  // tests
+
 // Whether skip_empty may skip at all: some volume is not empty, every
 // background is transparent, and no volume moves more than 16 voxels within
 // the shutter (the skipper dilates a moving volume's occupancy by its reach,
