@@ -52,7 +52,7 @@ struct OracleField {
     float background() const { return rings ? distances[kFarRing] : constant; }
 
     // Distance at an index-space point of the volume (nearest-voxel lookup).
-    float at(const RingAccessor& acc, const openvdb::Vec3d& indexPos) const {
+    [[gnu::always_inline]] float at(const RingAccessor& acc, const openvdb::Vec3d& indexPos) const {
         if (!rings) return constant;
         // Beyond int range (or NaN) a Coord cannot be formed; the tree's
         // background is what it holds there.

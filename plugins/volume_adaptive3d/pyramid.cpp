@@ -309,7 +309,7 @@ void SliceWorker::composite(Pyramid& pyramid, int idx, int slice) {
     dispatch(pyramid, [&](auto c) { compositeOf<c.one, c.surfaces>(pyramid, idx, slice); });
 }
 
-bool SliceWorker::pixelQuiet(const Pyramid& pyramid, int l, int idx) const {
+[[gnu::always_inline]] inline bool SliceWorker::pixelQuiet(const Pyramid& pyramid, int l, int idx) const {
     const PyramidLevel& level = pyramid.level(l);
     if (level.d[idx] != float(1 << sc_.lmax)) return false;
     const std::size_t pixels = level.rays.dir.size();
