@@ -1,14 +1,14 @@
 #include "plugins/volume_raymarch/volume_march.hpp"
 
+#include "core/base/shared_cache.hpp"
 #include "core/volume/visible_cells.hpp"
 #include "core/volume/volume_key.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <list>
-#include <mutex>
 #include <string>
+#include <utility>
 
 namespace weft {
 
@@ -67,44 +67,25 @@ EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
 
 namespace {
 
-struct SkipperEntry {
-    std::string key;
-    std::shared_ptr<const EmptySpaceSkipper> skipper;
-    std::vector<openvdb::FloatGrid::ConstPtr> keptGrids;  // volumes identified by their trees stay alive
-};
-
-std::mutex gSkipperMutex;
-std::list<SkipperEntry> gSkippers;  // most recently used first
+SharedCache<std::shared_ptr<const EmptySpaceSkipper>>& skippers() {
+    static SharedCache<std::shared_ptr<const EmptySpaceSkipper>> entries(kSkipperCacheEntries);
+    return entries;
+}
 
 }  // namespace
 
 SharedSkipper sharedEmptySpaceSkipper(const std::vector<Volume>& volumes) {
+    const auto build = [&] { return std::make_shared<const EmptySpaceSkipper>(volumes); };
     const bool moves = std::any_of(volumes.begin(), volumes.end(), [](const Volume& v) { return v.motion != nullptr; });
-    if (moves) return {std::make_shared<const EmptySpaceSkipper>(volumes), false};
+    if (moves) return {build(), false};
     std::string key;
-    for (const Volume& v : volumes) key += volumeKey(v) + "#";
-    {
-        std::lock_guard<std::mutex> lock(gSkipperMutex);
-        for (auto it = gSkippers.begin(); it != gSkippers.end(); ++it)
-            if (it->key == key) {
-                gSkippers.splice(gSkippers.begin(), gSkippers, it);
-                return {it->skipper, true};
-            }
-    }
-    // Built outside the lock: two renders that miss at once both build (the same skipper).
-    auto skipper = std::make_shared<const EmptySpaceSkipper>(volumes);
-    std::vector<openvdb::FloatGrid::ConstPtr> kept;
-    for (const Volume& v : volumes) kept.push_back(keptGrid(v));
-    std::lock_guard<std::mutex> lock(gSkipperMutex);
-    gSkippers.push_front({key, skipper, std::move(kept)});
-    while (gSkippers.size() > std::size_t(kSkipperCacheEntries)) gSkippers.pop_back();
-    return {skipper, false};
+    std::vector<std::shared_ptr<const void>> kept;
+    for (const Volume& v : volumes) key += volumeKey(v) + "#", kept.push_back(keptGrid(v));
+    auto found = skippers().get(key, build, std::move(kept));
+    return {std::move(found.value), found.reused};
 }
 
-void clearSkipperCache() {
-    std::lock_guard<std::mutex> lock(gSkipperMutex);
-    gSkippers.clear();
-}
+void clearSkipperCache() { skippers().clear(); }
 
 constexpr double kSkipMotionReach = 16;
 
