@@ -47,13 +47,13 @@ struct Vec3Lookup {
 };
 
 struct VolumeLookup : GridLookup {
-    VdbIntersector primary, shadow;
+    std::optional<VdbIntersector> primary, shadow;  // where the volume has an intersector
     Vec3Lookup emission, color;
     std::optional<MotionLookup> motion;
     const openvdb::math::Transform* xf;
     explicit VolumeLookup(const ScatterVolume& v)
-        : GridLookup(*v.volume->grid), primary(*v.intersector), shadow(*v.intersector), emission(v.volume->emission),
-          color(v.volume->color), xf(&v.volume->grid->transform()) {
+        : GridLookup(*v.volume->grid), emission(v.volume->emission), color(v.volume->color), xf(&v.volume->grid->transform()) {
+        if (v.intersector) primary.emplace(*v.intersector), shadow.emplace(*v.intersector);
         emplaceMotion(motion, *v.volume);
     }
     // Where the volume's grids are read for world point p at shutter time
@@ -204,7 +204,9 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
     double unitLength = std::numeric_limits<double>::max();
     for (std::uint32_t i : crossed(ray.origin, ray.dir, std::numeric_limits<double>::infinity(), row)) {
         const VdbRay iray = volumes_[i].indexRay(wray);
-        if (!row.volumes[i].primary.setIndexRay(volumes_[i].occupancyRay(iray))) continue;
+        const VdbRay oray = volumes_[i].occupancyRay(iray);
+        VolumeLookup& look = row.volumes[i];
+        if (!(look.primary ? look.primary->setIndexRay(oray) : volumes_[i].crosses(oray))) continue;
         row.crossings.push_back({i, iray, 0, 0});
         unitLength = std::min(unitLength, volumes_[i].voxelLength);
     }
@@ -220,7 +222,7 @@ bool ScatterTracer::marchVolumes(const Ray& ray, double tSurface, float offset, 
             v.reaching->intervals(IndexRay{c.ray.eye(), c.ray.dir(), c.ray.t0(), c.ray.t1()}, c.perU, row.spans);
             continue;
         }
-        row.volumes[c.volume].primary.hits(row.hits);
+        row.volumes[c.volume].primary.value().hits(row.hits);
         for (const auto& h : row.hits) row.spans.push_back({h.t0 / c.perU, h.t1 / c.perU});
     }
     if (row.crossings.size() > 1) mergeIntervals(row.spans);
@@ -379,8 +381,9 @@ Vec3d ScatterTracer::shadowThrough(std::size_t volume, const Vec3d& p, const Vec
     // vdb_render's shadow rays start at t = Delta, so the first fixed step
     // lands one step away from p; the intersector works in index times.
     const VdbRay iray = v.indexRay(VdbRay(p, toLight, openvdb::math::Delta<double>::value(), distance));
-    if (!look.shadow.setIndexRay(v.occupancyRay(iray))) return T;
-    look.shadow.hits(row.hits);
+    VdbIntersector& intersector = look.shadow.value();  // built for every volume a shadow ray can cross
+    if (!intersector.setIndexRay(v.occupancyRay(iray))) return T;
+    intersector.hits(row.hits);
     const double k = v.voxelLengthsPerIndexUnit(iray.dir());  // 1 on uniform grids
     auto sigma = [&](double t) {
         const double rho = finiteDensity(look.sampler.isSample(look.indexAt(v.worldPos(iray, t), row.time)));

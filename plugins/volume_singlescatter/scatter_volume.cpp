@@ -9,13 +9,18 @@ namespace weft {
 
 namespace {
 
-// The active voxels of `occupancy` (an index-space grid) shifted by whole
-// leaves to lie a leaf above the origin on every axis.
-openvdb::MaskGrid::Ptr shiftedOccupancy(const openvdb::FloatGrid& occupancy, openvdb::Coord& shift) {
-    shift = -widthBelow(occupancy.evalActiveVoxelBoundingBox(), 8);
+// The active voxels of `occupancy` (an index-space grid) shifted by `shift`.
+openvdb::MaskGrid::Ptr shiftedOccupancy(const openvdb::FloatGrid& occupancy, const openvdb::Coord& shift) {
     openvdb::MaskGrid::Ptr mask = shiftedMask(occupancy.transform(), shift);
     addShiftedTopology(occupancy.tree(), shift, mask->tree());
     return mask;
+}
+
+// Whether any ray marches the intersector's spans: camera rays without
+// reaching blocks, and shadow rays (traced estimators, moving volumes,
+// emissive triangles, which the cache does not hold).
+bool marchesSpans(const ScatterVolume& v, const ScatterParams& params, const Scene& scene) {
+    return !v.reaching || params.estimator != ShadowEstimator::Cached || params.emitters || scene.volumesMove();
 }
 
 void setCoefficients(ScatterVolume& v, const Vec3d& absorb, const Vec3d& scatter) {
@@ -25,18 +30,33 @@ void setCoefficients(ScatterVolume& v, const Vec3d& absorb, const Vec3d& scatter
 
 }  // namespace
 
+openvdb::CoordBBox shiftedNodeBox(const openvdb::FloatTree& tree, const openvdb::Coord& shift) {
+    openvdb::CoordBBox box;
+    tree.root().evalActiveBoundingBox(box, /*visitVoxels=*/false);
+    box.translate(shift);
+    box.max().offset(1);
+    return box;
+}
+
 std::vector<ScatterVolume> scatterVolumes(const Scene& scene, const ScatterParams& params, bool paramsWin) {
     std::vector<ScatterVolume> out;
     for (const Volume& vol : scene.volumes) {
         if (vol.empty()) continue;  // OpenVDB's intersector refuses empty grids; they add nothing
         ScatterVolume v;
         v.volume = &vol;
-        openvdb::Coord shift;
-        v.occupancy = shiftedOccupancy(*occupancyIndexGrid(vol), shift);
-        v.shift = shift.asVec3d();
-        v.intersector = std::make_shared<const VdbIntersector>(*v.occupancy);
         if (!vol.emission && !vol.motion)
             v.reaching = VisibleBlocks::reaching(*vol.grid, float(params.cutoff), VisibleBlocks::Within::ActiveBlocks);
+        // Shifted by whole leaves to lie a leaf above the origin on every axis.
+        const openvdb::FloatGrid::ConstPtr occupied = occupancyIndexGrid(vol);
+        const openvdb::Coord shift = -widthBelow(occupied->evalActiveVoxelBoundingBox(), 8);
+        v.shift = shift.asVec3d();
+        if (marchesSpans(v, params, scene)) {
+            v.occupancy = shiftedOccupancy(*occupied, shift);
+            v.intersector = std::make_shared<const VdbIntersector>(*v.occupancy);
+            v.occupancyBox = v.intersector->bbox();
+        } else {
+            v.occupancyBox = shiftedNodeBox(occupied->tree(), shift);
+        }
         v.phase = params.phase, v.g = params.g;
         if (vol.medium.fromScene && !paramsWin) {
             setCoefficients(v, vol.medium.absorb, vol.medium.scatter);
