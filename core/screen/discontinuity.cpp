@@ -93,13 +93,12 @@ void blurPass(const float* src, float* dst, int width, int height, int srcStride
     for (int k = 1; k <= radius; ++k) wsumFull += weights[std::size_t(k)];
     for (int k = 1; k <= radius; ++k) wsumFull += weights[std::size_t(k)];
     const float invFull = 1.0f / wsumFull;
-    const int stride = srcStride;
-    const std::ptrdiff_t tap = alongX ? stride : std::ptrdiff_t(width) * stride;
+    const std::ptrdiff_t tap = alongX ? srcStride : std::ptrdiff_t(width) * srcStride;
     tbb::parallel_for(0, height, [&](int y) {
         float acc[64];
         const int len = alongX ? width : height;
         const std::vector<std::uint8_t> full = fullWalks(disc, width, height, y, radius, alongX);
-        FreshBuffer<float> plain(std::size_t(width) * stride);  // written where `full` before it is read
+        FreshBuffer<float> plain(std::size_t(width) * srcStride);  // written where `full` before it is read
         for (int x0 = 0; x0 < width;) {
             if (!full[std::size_t(x0)]) {
                 ++x0;
@@ -108,26 +107,26 @@ void blurPass(const float* src, float* dst, int width, int height, int srcStride
             int x1 = x0;
             while (x1 < width && full[std::size_t(x1)]) ++x1;
             // In pieces that stay in the first-level cache across the taps.
-            const std::size_t at = (std::size_t(y) * width + x0) * stride, n = std::size_t(x1 - x0) * stride;
+            const std::size_t at = (std::size_t(y) * width + x0) * srcStride, n = std::size_t(x1 - x0) * srcStride;
             for (std::size_t i = 0; i < n; i += kPlainPiece)
-                plainRun(src + at + i, tap, weights.data(), radius, invFull, plain.data() + std::size_t(x0) * stride + i,
+                plainRun(src + at + i, tap, weights.data(), radius, invFull, plain.data() + std::size_t(x0) * srcStride + i,
                          int(std::min(kPlainPiece, n - i)));
             x0 = x1;
         }
         for (int x = 0; x < width; ++x) {
             const std::size_t base = std::size_t(y) * width + x;
             if (full[std::size_t(x)]) {
-                for (int c = 0; c < nc; ++c) dst[base * dstStride + c] = plain[std::size_t(x) * stride + c];
+                for (int c = 0; c < nc; ++c) dst[base * dstStride + c] = plain[std::size_t(x) * srcStride + c];
                 continue;
             }
             const int pos = alongX ? x : y;
             const std::ptrdiff_t step = alongX ? 1 : width;  // pixels between neighbours
             auto at = [&](int k) { return std::size_t(std::ptrdiff_t(base) + (k - pos) * step); };
             float wsum = weights[0];
-            for (int c = 0; c < nc; ++c) acc[c] = weights[0] * src[base * stride + c];
+            for (int c = 0; c < nc; ++c) acc[c] = weights[0] * src[base * srcStride + c];
             auto add = [&](int k, float w) {
                 wsum += w;
-                const float* p = src + at(k) * stride;
+                const float* p = src + at(k) * srcStride;
                 for (int c = 0; c < nc; ++c) acc[c] += w * p[c];
             };
             for (int k = 1; k <= radius && pos + k < len && !disc[at(pos + k - 1)]; ++k) add(pos + k, weights[std::size_t(k)]);
@@ -149,23 +148,17 @@ void blurBoth(float* data, float* tmp, int width, int height, int stride, int ch
 
 }  // namespace
 
-void discontinuityBlur(float* data, float* scratch, int width, int height, int stride, int channels,
+void discontinuityBlur(float* data, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius) {
     if (radius <= 0 || channels <= 0) return;
     if (channels > 64) throw std::invalid_argument("discontinuityBlur: at most 64 channels");
     const float sigma = 0.5f * float(radius);
     std::vector<float> weights(std::size_t(radius) + 1);
     for (int k = 0; k <= radius; ++k) weights[std::size_t(k)] = std::exp(-0.5f * float(k * k) / (sigma * sigma));
-    if (channels == 6) blurBoth<6>(data, scratch, width, height, stride, channels, discontinuity, weights);
-    else if (channels == 12) blurBoth<12>(data, scratch, width, height, stride, channels, discontinuity, weights);
-    else blurBoth<0>(data, scratch, width, height, stride, channels, discontinuity, weights);
-}
-
-void discontinuityBlur(float* data, int width, int height, int stride, int channels,
-                       const std::vector<std::uint8_t>& discontinuity, int radius) {
-    if (radius <= 0 || channels <= 0) return;
     FreshBuffer<float> scratch(std::size_t(width) * height * channels);
-    discontinuityBlur(data, scratch.data(), width, height, stride, channels, discontinuity, radius);
+    if (channels == 6) blurBoth<6>(data, scratch.data(), width, height, stride, channels, discontinuity, weights);
+    else if (channels == 12) blurBoth<12>(data, scratch.data(), width, height, stride, channels, discontinuity, weights);
+    else blurBoth<0>(data, scratch.data(), width, height, stride, channels, discontinuity, weights);
 }
 
 }  // namespace weft

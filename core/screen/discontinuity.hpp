@@ -28,11 +28,10 @@ bool similarTexels(const GTexel& a, const GTexel& b, const DiscontinuityThreshol
 std::vector<std::uint8_t> discontinuityBuffer(const GBuffer& g, const DiscontinuityThresholds& t);
 
 // Blurs the first `channels` of every `stride` floats per pixel in place;
-// kernel size 2*radius+1, sigma = radius / 2 (radius 0: no-op). `scratch`
-// holds the pass along x (width * height * channels floats, contents
-// ignored); without it the blur allocates its own.
-void discontinuityBlur(float* data, float* scratch, int width, int height, int stride, int channels,
-                       const std::vector<std::uint8_t>& discontinuity, int radius);
+// kernel size 2*radius+1, sigma = radius / 2 (radius 0: no-op). The pass
+// along x goes to a scratch buffer of the blurred channels only, which may
+// reuse a released buffer's pages (core/base/large_buffer.hpp): whatever
+// they held is never read.
 void discontinuityBlur(float* data, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius);
 inline void discontinuityBlur(std::vector<float>& data, int width, int height, int channels,

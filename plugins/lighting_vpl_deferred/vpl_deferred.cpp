@@ -64,10 +64,19 @@ std::pair<int, int> parsePair(const std::string& text, int maxValue) {
     return {a, b};
 }
 
+// How the G-buffer reaches the sub-buffers: read in place by the shading
+// pass, or split into copies (and the light gathered back) in one pass or two.
+enum class Split { Fused, OnePass, TwoPass };
+
+Split splitNamed(const std::string& name) {
+    return name == "two_pass" ? Split::TwoPass : name == "one_pass" ? Split::OnePass : Split::Fused;
+}
+
 struct VplParams {
     std::uint32_t paths;
     int n, m, p, q;
-    bool copies, twoPass, visibility, filter;
+    Split split;
+    bool visibility, filter;
     float clampFraction;
     double volumeStep;
     int compensation, radius;
@@ -81,8 +90,7 @@ VplParams readParams(const ParamSet& ps) {
     std::tie(v.n, v.m) = parsePair(ps.getString("interleave"), 64);
     std::tie(v.p, v.q) = parsePair(ps.getString("block"), 4096);
     if (!ps.wasSet("block")) v.p = (v.p + v.n - 1) / v.n * v.n, v.q = (v.q + v.m - 1) / v.m * v.m;  // default: 16x16 rounded up to the pattern
-    v.copies = ps.getString("split") != "fused";
-    v.twoPass = ps.getString("split") == "two_pass";
+    v.split = splitNamed(ps.getString("split"));
     v.visibility = ps.getBool("visibility");
     v.filter = ps.getBool("filter");
     v.clampFraction = float(ps.getFloat("clamp"));
@@ -93,7 +101,7 @@ VplParams readParams(const ParamSet& ps) {
     v.thresholds.normalCos = float(std::cos(ps.getFloat("normal_threshold") * M_PI / 180.0));
     v.thresholds.position = float(ps.getFloat("position_threshold"));
     v.glossy = Brdf::modelNamed(ps.getString("glossy"));
-    if (v.twoPass && (v.p % v.n || v.q % v.m))
+    if (v.split == Split::TwoPass && (v.p % v.n || v.q % v.m))
         throw Error("lighting.vpl_deferred: block=" + ps.getString("block") + " must be a multiple of interleave=" + ps.getString("interleave") + " in each direction");
     if (v.paths < std::uint32_t(v.n * v.m))
         throw Error("lighting.vpl_deferred: vpls=" + std::to_string(v.paths) + " leaves some of the " + std::to_string(v.n * v.m) + " sub-buffers without VPLs");
@@ -133,7 +141,7 @@ public:
         }
 
         const SubBufferLayout layout(s.width, s.height, p_.n, p_.m);
-        const bool copies = p_.copies && layout.count() > 1;
+        const bool copies = p_.split != Split::Fused && layout.count() > 1;
         LargeBuffer<ShadeTexel> split;
         if (copies) split = splitPass(g, layout, ctx);
         LightBuffer light;
@@ -170,7 +178,7 @@ private:
         ScopedTimer t(ctx.timings, "BS.split");
         LargeBuffer<ShadeTexel> split, scratch;
         auto pack = [](const GTexel& texel) { return ShadeTexel(texel); };
-        if (p_.twoPass) splitTwoPass(g.texels, split, scratch, layout, p_.p, p_.q, pack);
+        if (p_.split == Split::TwoPass) splitTwoPass(g.texels, split, scratch, layout, p_.p, p_.q, pack);
         else splitOnePass(g.texels, split, layout, pack);
         return split;
     }
@@ -179,7 +187,7 @@ private:
     void gatherPass(LightBuffer& light, const SubBufferLayout& layout, RenderContext& ctx) const {
         ScopedTimer t(ctx.timings, "BG.gather");
         LightBuffer gathered, scratch;
-        if (p_.twoPass) gatherTwoPass(light, gathered, scratch, layout, p_.p, p_.q);
+        if (p_.split == Split::TwoPass) gatherTwoPass(light, gathered, scratch, layout, p_.p, p_.q);
         else gatherOnePass(light, gathered, layout);
         std::swap(light, gathered);
     }
