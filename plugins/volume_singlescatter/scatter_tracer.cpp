@@ -13,12 +13,15 @@
 #include "core/volume/transmittance.hpp"
 #include "core/volume/volume_motion.hpp"
 #include "core/volume/volume_ray.hpp"
+#include "plugins/volume_singlescatter/shared_caches.hpp"
 
 namespace weft {
 
 namespace {
 
 const Counter kLightCacheVoxels{"light_cache.voxels", "active voxels of the light caches built"};
+const Counter kLightCachesBuilt{"light_cache.built", "light caches built by this render"};
+const Counter kLightCachesReused{"light_cache.reused", "light caches reused from an earlier render of this process (same volumes, light, shadowstep, gain, cutoff, cache_voxel)"};
 
 using Sampler = LeafSampler;
 
@@ -151,20 +154,25 @@ static LightCacheSettings cacheSettings(const ScatterParams& p, const ScatterVol
 
 void ScatterTracer::buildCaches(RenderContext& ctx) {
     ScopedTimer timer(ctx.timings, "light_cache");
-    std::int64_t voxels = 0;
+    std::int64_t voxels = 0, built = 0, reused = 0;
     if (!params_.lights.empty())  // the leaps serve the lights' marches only: none without a point or directional light
-        for (const ScatterVolume& v : volumes_) cacheReaching_.push_back(VisibleBlocks::reaching(*v.volume->grid, float(params_.cutoff)));
+        for (const ScatterVolume& v : volumes_)
+            cacheReaching_.push_back(sharedReaching(*v.volume, float(params_.cutoff), VisibleBlocks::Within::Anywhere));
     for (const DirectionalOrPointLight& light : params_.lights)
         for (const ScatterVolume& receiver : volumes_) {
             for (std::size_t o = 0; o < volumes_.size(); ++o) {
                 const ScatterVolume& occluder = volumes_[o];
-                densityCaches_.push_back(
-                    buildLightCache(*receiver.volume, *occluder.volume, cacheReaching_[o].get(), light, cacheSettings(params_, occluder)));
-                voxels += std::int64_t(densityCaches_.back()->activeVoxelCount());
+                SharedLightCache cache =
+                    sharedLightCache(*receiver.volume, *occluder.volume, cacheReaching_[o].get(), light, cacheSettings(params_, occluder));
+                if (cache.reused) ++reused;
+                else ++built, voxels += std::int64_t(cache.grid->activeVoxelCount());
+                densityCaches_.push_back(std::move(cache.grid));
             }
             if (accel_) visibilityCaches_.push_back(buildVisibilityCache(*receiver.volume, *accel_, light, params_.cacheCoarsening));
         }
     ctx.counters.add(kLightCacheVoxels, voxels);
+    ctx.counters.add(kLightCachesBuilt, built);
+    ctx.counters.add(kLightCachesReused, reused);
 }
 
 void ScatterTracer::RowDeleter::operator()(Row* row) const { delete row; }

@@ -100,8 +100,8 @@ private:
     bool moving_;  // some volume moves while the shutter is open
     // [volume], with the cache: where the cache's march samples (every leaf's
     // values count, not only the active leaves' that camera rays read).
-    std::vector<std::unique_ptr<VisibleBlocks>> cacheReaching_;
-    std::vector<openvdb::FloatGrid::Ptr> densityCaches_;     // [light][receiver][occluder]
+    std::vector<std::shared_ptr<const VisibleBlocks>> cacheReaching_;
+    std::vector<openvdb::FloatGrid::ConstPtr> densityCaches_;  // [light][receiver][occluder]
     std::vector<openvdb::FloatGrid::Ptr> visibilityCaches_;
     VolumeBvh bvh_;  // with two or more volumes  // [light][receiver], with meshes only
 };

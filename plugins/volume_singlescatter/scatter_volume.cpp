@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/volume/octant_shift.hpp"
+#include "plugins/volume_singlescatter/shared_caches.hpp"
 
 namespace weft {
 
@@ -45,7 +46,7 @@ std::vector<ScatterVolume> scatterVolumes(const Scene& scene, const ScatterParam
         ScatterVolume v;
         v.volume = &vol;
         if (!vol.emission && !vol.motion)
-            v.reaching = VisibleBlocks::reaching(*vol.grid, float(params.cutoff), VisibleBlocks::Within::ActiveBlocks);
+            v.reaching = sharedReaching(vol, float(params.cutoff), VisibleBlocks::Within::ActiveBlocks);
         // Shifted by whole leaves to lie a leaf above the origin on every axis.
         const openvdb::FloatGrid::ConstPtr occupied = occupancyIndexGrid(vol);
         const openvdb::Coord shift = -widthBelow(occupied->evalActiveVoxelBoundingBox(), 8);

@@ -1,11 +1,13 @@
 // What volume.singlescatter keeps of each volume: the intersector's box
-// without the intersector, and the intersector built only where a ray
-// marches its spans.
+// without the intersector, the intersector built only where a ray marches
+// its spans, and the light caches shared between renders of one process.
 #include <gtest/gtest.h>
 
 #include "core/volume/octant_shift.hpp"
 #include "core/volume/volume.hpp"
 #include "plugins/volume_singlescatter/scatter_volume.hpp"
+#include "plugins/volume_singlescatter/shared_caches.hpp"
+#include "tests/support/render_helpers.hpp"
 
 using namespace weft;
 
@@ -49,4 +51,29 @@ TEST(ScatterVolume, TheIntersectorIsBuiltOnlyWhereRaysMarchItsSpans) {
     ScatterParams lit = cached;
     lit.emitters = true;  // emissive triangles' shadows are traced whatever the estimator
     EXPECT_TRUE(scatterVolumes(scene, lit, false)[0].intersector);
+}
+
+// Each render of a frame sequence loads its volume again: an unchanged
+// file finds the light cache and blocks the first render built, and the
+// image is the one a fresh build gives. Another light or cache setting
+// builds its own.
+TEST(ScatterVolume, LightCachesAreSharedBetweenRendersOfTheSameVolume) {
+    clearScatterCaches();
+    const auto lightCaches = [](const RenderOutcome& out) {
+        return std::make_pair(out.counters.at("light_cache.built"), out.counters.at("light_cache.reused"));
+    };
+    const RenderOutcome first = test::render(kSmoke, "40x32", {}, "volume.singlescatter");
+    const RenderOutcome second = test::render(kSmoke, "40x32", {}, "volume.singlescatter");
+    EXPECT_EQ(lightCaches(first), std::make_pair(std::int64_t(1), std::int64_t(0)));
+    EXPECT_EQ(lightCaches(second), std::make_pair(std::int64_t(0), std::int64_t(1)));
+    EXPECT_EQ(compareImages(first.image, second.image).overall.maxAbs, 0.0);
+    EXPECT_EQ(second.counters.count("light_cache.voxels") ? second.counters.at("light_cache.voxels") : 0, 0);
+    const RenderOutcome coarser = test::render(kSmoke, "40x32", {"cache_voxel=3"}, "volume.singlescatter");
+    EXPECT_EQ(lightCaches(coarser).first, 1);
+    const RenderOutcome otherLight = test::render(kSmoke, "40x32", {"light=0,1,0"}, "volume.singlescatter");
+    EXPECT_EQ(lightCaches(otherLight).first, 1);
+    clearScatterCaches();
+    const RenderOutcome rebuilt = test::render(kSmoke, "40x32", {}, "volume.singlescatter");
+    EXPECT_EQ(lightCaches(rebuilt).first, 1);
+    EXPECT_EQ(compareImages(first.image, rebuilt.image).overall.maxAbs, 0.0);
 }

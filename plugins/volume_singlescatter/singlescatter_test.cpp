@@ -10,6 +10,7 @@
 
 #include "core/image/image_io.hpp"
 #include "core/volume/volume.hpp"
+#include "plugins/volume_singlescatter/shared_caches.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/vdb_fixtures.hpp"
@@ -133,7 +134,9 @@ TEST(SingleScatter, ExtremesGiveNoNaN) {
 TEST(SingleScatter, IdenticalOnOneAndTwoThreads) {
     for (const char* estimator : {"cached", "ratio"}) {
         const std::vector<std::string> sets{std::string("estimator=") + estimator, "step=2"};
+        clearScatterCaches();  // each thread count builds its own light cache
         const RenderOutcome a = test::render(kSmoke, "40x32", sets, kTech, 1);
+        clearScatterCaches();
         const RenderOutcome b = test::render(kSmoke, "40x32", sets, kTech, 2);
         EXPECT_EQ(a.image.data(), b.image.data()) << estimator;
         EXPECT_EQ(a.counters, b.counters) << estimator;
