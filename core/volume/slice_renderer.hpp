@@ -2,8 +2,6 @@
 // What the slice-based volume techniques (volume.preint, volume.adaptive3d)
 // share: their common parameters, the scene checks, and sampling the data
 // at a point of a slice as a normalised scalar.
-#include <algorithm>
-#include <cmath>
 #include <vector>
 
 #include "core/base/params.hpp"
@@ -32,23 +30,17 @@ const Volume& requireSliceableVolume(const Scene& scene, const std::string& tech
 class ScalarSampler {
 public:
     explicit ScalarSampler(const Volume& volume)
-        : accessor_(volume.grid->getConstAccessor()), sampler_(accessor_, volume.grid->transform()),
-          background_(float(volume.tf.normalize(volume.grid->background()))), rangeMin_(volume.tf.rangeMin()),
-          rangeWidth_(volume.tf.rangeMax() - volume.tf.rangeMin()) {}
-    // TransferFunction::normalize, inline: the slice loops call it per sample.
-    float sample(const openvdb::Vec3d& indexPos) const {
-        const double value = sampler_.isSample(indexPos);
-        if (!std::isfinite(value)) return 0.0f;  // NaN voxels read as empty
-        return float(std::clamp((value - rangeMin_) / rangeWidth_, 0.0, 1.0));
-    }
+        : normalize_(volume.tf.normalization()), accessor_(volume.grid->getConstAccessor()),
+          sampler_(accessor_, volume.grid->transform()), background_(float(normalize_(volume.grid->background()))) {}
+    float sample(const openvdb::Vec3d& indexPos) const { return float(normalize_(sampler_.isSample(indexPos))); }
     float background() const { return background_; }
 
 private:
     using Accessor = openvdb::FloatGrid::ConstAccessor;
+    TransferFunction::Normalization normalize_;
     Accessor accessor_;
     mutable LeafSampler sampler_;  // keeps the last leaf: one per thread
     float background_;
-    double rangeMin_, rangeWidth_;
 };
 
 }  // namespace weft

@@ -15,11 +15,6 @@ TransferFunction::TransferFunction(double rangeMin, double rangeMax, std::vector
     buildTable();
 }
 
-double TransferFunction::normalize(double value) const {
-    if (!std::isfinite(value)) return 0.0;  // NaN voxels read as empty
-    return std::clamp((value - rangeMin_) / (rangeMax_ - rangeMin_), 0.0, 1.0);
-}
-
 TfPoint TransferFunction::atS(double s) const {
     if (s <= points_.front().s) return points_.front();
     if (s >= points_.back().s) return points_.back();

@@ -4,7 +4,9 @@
 // linear in s. Extinction is per voxel length, so the opacity of a segment
 // of length h voxels at constant s is 1 - exp(-extinction(s) * h); colour is
 // the emitted colour per unit opacity (emission-absorption model).
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace weft {
@@ -30,8 +32,18 @@ public:
     double rangeMax() const { return rangeMax_; }
     const std::vector<TfPoint>& points() const { return points_; }
 
-    // Normalised scalar of a data value, clamped to [0, 1].
-    double normalize(double value) const;
+    // Data value -> normalised scalar, clamped to [0, 1], as a value: the
+    // slice loops keep one per sampler, in registers, where a reference to
+    // the transfer function would be read again at every sample.
+    struct Normalization {
+        double min = 0, width = 1;
+        double operator()(double value) const {
+            if (!std::isfinite(value)) return 0.0;  // NaN voxels read as empty
+            return std::clamp((value - min) / width, 0.0, 1.0);
+        }
+    };
+    Normalization normalization() const { return {rangeMin_, rangeMax_ - rangeMin_}; }
+    double normalize(double value) const { return normalization()(value); }
     // Exact piecewise-linear evaluation at s in [0, 1] (double precision).
     TfPoint atS(double s) const;
     // Fast lookup through a 4096-entry table, for inner loops (defined

@@ -67,7 +67,7 @@ TEST(ScatterVolume, LightCachesAreSharedBetweenRendersOfTheSameVolume) {
     EXPECT_EQ(lightCaches(first), std::make_pair(std::int64_t(1), std::int64_t(0)));
     EXPECT_EQ(lightCaches(second), std::make_pair(std::int64_t(0), std::int64_t(1)));
     EXPECT_EQ(compareImages(first.image, second.image).overall.maxAbs, 0.0);
-    EXPECT_EQ(second.counters.count("light_cache.voxels") ? second.counters.at("light_cache.voxels") : 0, 0);
+    EXPECT_EQ(second.counters.at("light_cache.voxels"), 0);
     const RenderOutcome coarser = test::render(kSmoke, "40x32", {"cache_voxel=3"}, "volume.singlescatter");
     EXPECT_EQ(lightCaches(coarser).first, 1);
     const RenderOutcome otherLight = test::render(kSmoke, "40x32", {"light=0,1,0"}, "volume.singlescatter");
