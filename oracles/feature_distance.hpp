@@ -47,6 +47,11 @@ OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleCo
 OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx);
 OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const OracleContext& ctx);
 
+// gradient_alpha's features: the voxels (active ones and their face
+// neighbours) where the central-difference gradient of one slice's opacity
+// exceeds ctx.epsilon per voxel, moved by `shift` (a multiple of 8).
+openvdb::MaskGrid::Ptr gradientFeatures(const OracleContext& ctx, const openvdb::Coord& shift = openvdb::Coord(0));
+
 // Voxels where one slice's emitted radiance (the largest channel of the
 // emission grid x the slice spacing) has a gradient above ctx.epsilon per
 // voxel, the emission's counterpart of gradient_alpha's opacity gradient.
