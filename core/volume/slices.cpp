@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "core/volume/volume_ray.hpp"
 
@@ -131,10 +132,16 @@ LevelRays makeLevelRays(const Camera& camera, const Volume& volume, const SliceS
     const std::size_t n = std::size_t(rays.width) * rays.height;
     rays.dir.resize(n), rays.first.resize(n), rays.last.resize(n);
     const CameraRays eye(camera, imageWidth, imageHeight);  // one frame for every ray, as Camera::generate builds per call
+    // Every ray starts at the slices' eye: only its direction goes to index space.
+    const IndexDirections toIndex(volume);
+    const openvdb::CoordBBox box = volume.indexBox();
     tbb::parallel_for(0, rays.height, [&](int y) {
         for (int x = 0; x < rays.width; ++x) {
             const int i = rays.index(x, y);
-            const SliceRay ray = sliceRayOf(eye.at(scale * (x + 0.5), scale * (y + 0.5)), volume, slices);
+            SliceRay ray;
+            ray.dir = toIndex(eye.at(scale * (x + 0.5), scale * (y + 0.5)).dir).unitSafe();
+            if (!volume.empty())
+                if (const auto span = clipToBox(slices.eye, ray.dir, box)) ray.inside = true, std::tie(ray.t0, ray.t1) = *span;
             rays.dir[i] = ray.dir;
             rays.first[i] = 1, rays.last[i] = 0;
             if (!ray.inside) continue;

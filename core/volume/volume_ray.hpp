@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/scene/camera.hpp"
@@ -32,6 +33,21 @@ void mergeIntervals(std::vector<RayInterval>& intervals);
 
 // Clips a world ray to the volume's index box; nothing when it misses.
 std::optional<IndexRay> toIndexRay(const Ray& worldRay, const Volume& volume);
+
+// [t0, t1] of the ray origin + t dir (index space) inside `box`; nothing when it misses.
+std::optional<std::pair<double, double>> clipToBox(const Vec3d& origin, const Vec3d& dir, const openvdb::CoordBBox& box);
+
+// World directions in a volume's index space through its transform's linear
+// part (weft reads linear transforms only): what worldToIndex(o + d) -
+// worldToIndex(o) gives, up to rounding, without two map calls a ray.
+class IndexDirections {
+public:
+    explicit IndexDirections(const Volume& volume);
+    Vec3d operator()(const Vec3d& world) const { return column_[0] * world.x() + column_[1] * world.y() + column_[2] * world.z(); }
+
+private:
+    Vec3d column_[3];
+};
 
 // Premultiplied colour and transmittance of one ray, front to back.
 struct RayAccumulator {
