@@ -186,53 +186,62 @@ TEST(GradientAlphaOracle, EpsilonAboveTheJumpLeavesNoFeatures) {
 // The features read per 8^3 block (leaf buffers, a tile, the background
 // beyond) are those of central differences taken voxel by voxel through an
 // accessor, wherever the gradient is not within rounding of the threshold.
+// A tree of leaves only takes its candidates from the leaves' value masks,
+// one with an active tile from OpenVDB's dilation: both are checked.
 TEST(GradientAlphaOracle, BlockwiseFeaturesMatchVoxelByVoxelDifferences) {
     initVdb();
-    openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.1f);
-    Rng rng(7);
-    for (int x = -12; x < 20; ++x)
-        for (int y = -4; y < 13; ++y)
-            for (int z = 0; z < 9; ++z)
-                if (rng.uniform() < 0.7f) {
-                    const float value = rng.uniform() < 0.5f ? 0.4f : rng.uniform();  // plateaus and noise
-                    if (rng.uniform() < 0.9f) grid->tree().setValueOn(Coord(x, y, z), value);
-                    else grid->tree().setValueOff(Coord(x, y, z), value);  // inactive but read by neighbours
-                }
-    grid->tree().fill(openvdb::CoordBBox(Coord(24, 0, 0), Coord(31, 7, 7)), 0.8f, true);  // an active tile
-    ASSERT_GT(grid->tree().activeTileCount(), 0u);
-    Volume v;
-    v.grid = grid;
-    v.tf = TransferFunction(0, 1, {{0, {1, 1, 1}, 0}, {1, {1, 1, 1}, 0.9}});
-    computeStatistics(v);
-    const OracleContext ctx{v, 1.0, 3, 0.05};
-    const Coord shift(16, -8, 24);
-    const openvdb::MaskGrid::Ptr features = gradientFeatures(ctx, shift);
-    const openvdb::MaskGrid::Ptr candidates = activeAndFaceNeighbours(*grid, shift);
-    auto acc = grid->getConstAccessor();
-    int checked = 0, marked = 0, rounding = 0;
-    for (auto it = candidates->tree().cbeginValueOn(); it; ++it) {
-        const Coord c = it.getCoord() - shift;
-        double g2 = 0;
-        for (int axis = 0; axis < 3; ++axis) {
-            Coord lo = c, hi = c;
-            --lo[axis], ++hi[axis];
-            const double g = 0.5 * (sliceOpacity(v, 1.0, acc.getValue(hi)) - sliceOpacity(v, 1.0, acc.getValue(lo)));
-            g2 += g * g;
+    for (const bool activeTile : {false, true}) {
+        SCOPED_TRACE(activeTile ? "with an active tile" : "leaves only");
+        openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.1f);
+        Rng rng(7);
+        for (int x = -12; x < 20; ++x)
+            for (int y = -4; y < 13; ++y)
+                for (int z = 0; z < 9; ++z)
+                    if (rng.uniform() < 0.7f) {
+                        const float value = rng.uniform() < 0.5f ? 0.4f : rng.uniform();  // plateaus and noise
+                        if (rng.uniform() < 0.9f) grid->tree().setValueOn(Coord(x, y, z), value);
+                        else grid->tree().setValueOff(Coord(x, y, z), value);  // inactive but read by neighbours
+                    }
+        // Beside the data: an inactive tile with a value of its own, read by the voxels next to it.
+        grid->tree().fill(openvdb::CoordBBox(Coord(24, 8, 0), Coord(31, 15, 7)), 0.6f, false);
+        grid->tree().setValueOn(Coord(23, 9, 3), 0.2f);
+        if (activeTile) grid->tree().fill(openvdb::CoordBBox(Coord(24, 0, 0), Coord(31, 7, 7)), 0.8f, true);
+        ASSERT_EQ(grid->tree().activeTileCount() > 0, activeTile);
+        Volume v;
+        v.grid = grid;
+        v.tf = TransferFunction(0, 1, {{0, {1, 1, 1}, 0}, {1, {1, 1, 1}, 0.9}});
+        computeStatistics(v);
+        const OracleContext ctx{v, 1.0, 3, 0.05};
+        const Coord shift(16, -8, 24);
+        const openvdb::MaskGrid::Ptr features = gradientFeatures(ctx, shift);
+        const openvdb::MaskGrid::Ptr candidates = activeAndFaceNeighbours(*grid, shift);
+        auto acc = grid->getConstAccessor();
+        int checked = 0, marked = 0, rounding = 0;
+        for (auto it = candidates->tree().cbeginValueOn(); it; ++it) {
+            const Coord c = it.getCoord() - shift;
+            double g2 = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                Coord lo = c, hi = c;
+                --lo[axis], ++hi[axis];
+                const double g = 0.5 * (sliceOpacity(v, 1.0, acc.getValue(hi)) - sliceOpacity(v, 1.0, acc.getValue(lo)));
+                g2 += g * g;
+            }
+            const double threshold2 = ctx.epsilon * ctx.epsilon;
+            if (std::abs(g2 - threshold2) < 1e-6) {
+                ++rounding;
+                continue;
+            }
+            ++checked, marked += g2 > threshold2;
+            EXPECT_EQ(features->tree().isValueOn(it.getCoord()), g2 > threshold2) << c;
         }
-        const double threshold2 = ctx.epsilon * ctx.epsilon;
-        if (std::abs(g2 - threshold2) < 1e-6) {
-            ++rounding;
-            continue;
-        }
-        ++checked, marked += g2 > threshold2;
-        EXPECT_EQ(features->tree().isValueOn(it.getCoord()), g2 > threshold2) << c;
+        EXPECT_GT(checked, 4000);
+        EXPECT_GT(marked, 500);
+        EXPECT_LT(marked, checked - 300);  // some candidates fall below the threshold
+        const openvdb::Index64 count = features->tree().activeVoxelCount();  // and no feature outside the candidates
+        EXPECT_GE(count, openvdb::Index64(marked));
+        EXPECT_LE(count, openvdb::Index64(marked + rounding));
+        EXPECT_TRUE(features->transform() == candidates->transform());
     }
-    EXPECT_GT(checked, 4000);
-    EXPECT_GT(marked, 500);
-    EXPECT_LT(marked, checked - 500);
-    const openvdb::Index64 count = features->tree().activeVoxelCount();  // and no feature outside the candidates
-    EXPECT_GE(count, openvdb::Index64(marked));
-    EXPECT_LE(count, openvdb::Index64(marked + rounding));
 }
 
 TEST(VdbTopologyOracle, EmptySpaceIsFarOccupiedBricksAreDense) {
