@@ -18,6 +18,7 @@ constexpr std::int8_t kNoMaskOneInactive = 2, kMaskNoInactive = 3, kMaskOneInact
 
 using Words = std::vector<std::uint64_t>;
 using LeafMask = std::array<std::uint64_t, 8>;  // 8^3 voxels
+using Origin = std::array<std::int32_t, 3>;
 
 std::uint64_t countOn(const std::uint64_t* words, std::size_t n) {
     std::uint64_t on = 0;
@@ -55,7 +56,7 @@ public:
         for (std::uint32_t i = 0; i < children; ++i) {
             const auto origin = coordinate("root child origin");
             const std::size_t first = leafMasks_.size();
-            internalNode(5, f_.half);
+            internalNode(5, f_.half, origin);
             table[origin] = leavesOf.size();
             leavesOf.emplace_back(first, leafMasks_.size());
         }
@@ -115,32 +116,38 @@ private:
     }
 
     // InternalNode::readTopology of a node of 2^(3 log2Dim) entries; its
-    // children are 16^3 nodes, theirs leaves.
-    void internalNode(int log2Dim, bool half) {
+    // children are 16^3 nodes, theirs leaves. Child n of a node lies at
+    // (n >> 2 log2Dim, n >> log2Dim, n) (each mod 2^log2Dim) child widths from its origin.
+    void internalNode(int log2Dim, bool half, const Origin& origin) {
         const std::size_t entries = std::size_t(1) << (3 * log2Dim), words = entries / 64;
         Words childMask(words), valueMask(words);
         w_.bytes(childMask.data(), entries / 8, "internal node child mask");
         w_.bytes(valueMask.data(), entries / 8, "internal node value mask");
-        const auto child = [&](bool childHalf) {
-            if (log2Dim == 5) return internalNode(4, childHalf);
+        const auto child = [&](bool childHalf, std::size_t n) {
+            const std::int32_t width = log2Dim == 5 ? 128 : 8, last = (1 << log2Dim) - 1;
+            const Origin at{origin[0] + width * std::int32_t(n >> (2 * log2Dim)), origin[1] + width * std::int32_t((n >> log2Dim) & last),
+                            origin[2] + width * std::int32_t(n & last)};
+            if (log2Dim == 5) return internalNode(4, childHalf, at);
             LeafMask m;
             w_.bytes(m.data(), sizeof m, "leaf value mask");
             leafMasks_.push_back(m);
+            leafOrigins_.push_back(at);
         };
         if (f_.version < kInternalNodeCompression) {  // values stored between the children
             for (std::size_t i = 0; i < entries; ++i)
-                if (childMask[i / 64] >> (i % 64) & 1) child(false);  // read without fromHalf then
+                if (childMask[i / 64] >> (i % 64) & 1) child(false, i);  // read without fromHalf then
                 else w_.skip(valueBytes(), "internal node value");
             return;
         }
         const std::uint64_t count = f_.version < kNodeMaskCompression ? entries - countOn(childMask.data(), words) : entries;
         values(count, valueMask.data(), words, half);
         for (std::size_t i = 0; i < words; ++i)
-            for (std::uint64_t bits = childMask[i]; bits; bits &= bits - 1) child(half);
+            for (std::uint64_t bits = childMask[i]; bits; bits &= bits - 1) child(half, 64 * i + std::size_t(std::countr_zero(bits)));
     }
 
     // LeafNode::readBuffers: the value mask again, then the voxel values.
     void leafBuffer(std::size_t leaf) {
+        if (f_.leaves) f_.leaves->push_back({leafOrigins_[leaf], w_.pos()});
         LeafMask m;
         w_.bytes(m.data(), sizeof m, "leaf buffer value mask");
         // OpenVDB takes the mask from either copy; valid files hold the same twice.
@@ -157,6 +164,7 @@ private:
     Walker& w_;
     FloatTreeFormat f_;
     std::vector<LeafMask> leafMasks_;
+    std::vector<Origin> leafOrigins_;
 };
 
 }  // namespace

@@ -7,12 +7,21 @@
 // InternalNode and LeafNode readTopology/readBuffers, io::readCompressedValues)
 // and every chunk's stated size is checked against what its node expects.
 // Tree_vec3s_5_4_3 has the same layout with three floats per value.
+#include <array>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "core/volume/vdb_walker.hpp"
 
 namespace weft::vdbwalk {
+
+// A leaf as the walk found it: its origin and where its buffer (the value
+// mask, then the values) starts in the file.
+struct LeafBufferAt {
+    std::array<std::int32_t, 3> origin;
+    std::uint64_t pos;
+};
 
 struct FloatTreeFormat {
     std::uint32_t version = 0;      // the file's format version
@@ -20,6 +29,7 @@ struct FloatTreeFormat {
     bool half = false;              // values stored as 16-bit floats (Tree_float_5_4_3_HalfFloat)
     int components = 1;             // floats per value: 1, or 3 for Vec3s
     std::optional<std::uint64_t> topologyEnd;  // where the descriptor says the buffers begin (none in a stream)
+    std::vector<LeafBufferAt>* leaves = nullptr;  // when set, every leaf buffer, in the order OpenVDB reads them
 };
 
 // Walks from the root's background value to the end of the last leaf buffer.

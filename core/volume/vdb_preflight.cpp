@@ -10,7 +10,8 @@
 #include <limits>
 #include <mutex>
 #include <optional>
-#include <set>
+#include <map>
+#include <memory>
 #include <tuple>
 #include <vector>
 
@@ -98,10 +99,11 @@ void walkMetadata(Walker& w, const char* where) {
 struct FileFormat {
     std::uint32_t version;
     std::uint32_t compression;  // before 222 the file's, later each grid's
+    std::uint32_t libraryMajor = 0, libraryMinor = 0;
 };
 
 struct Descriptor {
-    std::string type;
+    std::string name, type;
     std::int64_t gridPos = 0, blockPos = 0, endPos = 0;  // all 0 in a file written as a stream
     bool instance = false;
     // The layouts walkFloatTree knows: float and Vec3s values, full or half.
@@ -117,7 +119,7 @@ struct Descriptor {
 // GridDescriptor::read: names, then the three positions.
 Descriptor readDescriptor(Walker& w, const FileFormat& file) {
     Descriptor d;
-    w.text("grid name");
+    d.name = w.text("grid name");
     d.type = w.text("grid type");
     d.instance = file.version >= 216 && !w.text("grid instance parent").empty();
     d.gridPos = w.value<std::int64_t>("grid position");
@@ -130,7 +132,7 @@ Descriptor readDescriptor(Walker& w, const FileFormat& file) {
 // every node and chunk (Archive::readGrid's order). False when the walk
 // stopped before a tree it does not know (another value type, a frustum
 // transform): readFloatGrid refuses such grids before OpenVDB reads them.
-bool walkGrid(Walker& w, const Descriptor& d, const FileFormat& file, std::optional<std::uint64_t> topologyEnd) {
+bool walkGrid(Walker& w, const Descriptor& d, const FileFormat& file, std::optional<std::uint64_t> topologyEnd, VdbLayout& layout) {
     const std::uint32_t compression = file.version >= 222 ? w.value<std::uint32_t>("grid compression") : file.compression;
     walkMetadata(w, "grid metadata");
     const std::int64_t mapBytes = mapDataBytes(w.text("transform type"));
@@ -139,13 +141,15 @@ bool walkGrid(Walker& w, const Descriptor& d, const FileFormat& file, std::optio
     if (d.instance) return true;  // the parent's tree is walked where it lies
     if (!d.floatTree()) return false;
     w.value<std::int32_t>("tree buffer count");
-    vdbwalk::walkFloatTree(w, {file.version, compression, d.halfFloat(), d.components(), topologyEnd});
+    VdbGridLayout& grid = layout.grids[d.name];
+    grid = {file.version, file.libraryMajor, file.libraryMinor, compression, d.halfFloat(), {}};
+    vdbwalk::walkFloatTree(w, {file.version, compression, d.halfFloat(), d.components(), topologyEnd, &grid.leaves});
     return true;
 }
 
 // A file with grid offsets: descriptors and grids interleaved, each grid
 // walked at the position its descriptor states.
-void walkIndexedGrids(Walker& w, const FileFormat& file, std::int32_t grids) {
+void walkIndexedGrids(Walker& w, const FileFormat& file, std::int32_t grids, VdbLayout& layout) {
     std::vector<Descriptor> descriptors;
     for (std::int32_t i = 0; i < grids; ++i) {
         const Descriptor d = readDescriptor(w, file);
@@ -161,26 +165,28 @@ void walkIndexedGrids(Walker& w, const FileFormat& file, std::int32_t grids) {
     }
     for (const Descriptor& d : descriptors) {
         w.seek(d.gridPos, "grid position");
-        if (walkGrid(w, d, file, std::uint64_t(d.blockPos)) && w.pos() > std::uint64_t(d.endPos))
+        if (walkGrid(w, d, file, std::uint64_t(d.blockPos), layout) && w.pos() > std::uint64_t(d.endPos))
             w.corrupt("the grid's buffers run past its end position " + std::to_string(d.endPos));
     }
 }
 
 // A file written as a stream has no offsets, and OpenVDB reads every grid
 // in it to find one, so every grid must be walked.
-void walkStreamedGrids(Walker& w, const FileFormat& file, std::int32_t grids) {
+void walkStreamedGrids(Walker& w, const FileFormat& file, std::int32_t grids, VdbLayout& layout) {
     for (std::int32_t i = 0; i < grids; ++i) {
         const Descriptor d = readDescriptor(w, file);
-        if (!walkGrid(w, d, file, std::nullopt))
+        if (!walkGrid(w, d, file, std::nullopt, layout))
             throw Error("volume '" + w.name() + "': the file was written as a stream (no grid offsets) and holds a " + d.type +
                         " grid, which weft cannot check before OpenVDB reads it; re-save it as a regular .vdb file");
     }
 }
 
-void walk(const char* data, std::uint64_t size, const std::string& name) {
+VdbLayout walk(const char* data, std::uint64_t size, const std::string& name) {
     initVdb();  // the registered metadata types
     Walker w(data, size, name);
-    if (size < 8 || w.value<std::int64_t>("magic number") != kMagic) return;  // not a VDB: OpenVDB says so
+    VdbLayout layout;
+    layout.fileSize = size;
+    if (size < 8 || w.value<std::int64_t>("magic number") != kMagic) return layout;  // not a VDB: OpenVDB says so
     const std::uint32_t version = w.value<std::uint32_t>("file version");
     // Outside these versions OpenVDB reads lengths this walk cannot check
     // (a 40-byte header of version 0 made it allocate 1.7 GB), so the file is
@@ -189,29 +195,30 @@ void walk(const char* data, std::uint64_t size, const std::string& name) {
         throw Error("volume '" + name + "': OpenVDB file format version " + std::to_string(version) +
                     " is not one weft reads (" + std::to_string(kOldestWalked) + " to " + std::to_string(kNewestWalked) +
                     "); re-save the file with a current OpenVDB");
-    w.value<std::uint32_t>("library major version");
-    w.value<std::uint32_t>("library minor version");
+    const std::uint32_t libraryMajor = w.value<std::uint32_t>("library major version");
+    const std::uint32_t libraryMinor = w.value<std::uint32_t>("library minor version");
     const bool offsets = w.value<std::uint8_t>("grid offsets flag") != 0;
     if (version >= 218) w.skip(36, "file UUID");
-    FileFormat file{version, 0};
+    FileFormat file{version, 0, libraryMajor, libraryMinor};
     if (version < 222) file.compression = w.value<std::uint32_t>("file compression");
     walkMetadata(w, "file metadata");
     const std::int32_t grids = w.value<std::int32_t>("grid count");
     if (grids < 0 || std::uint64_t(grids) * 32 > w.left()) w.corrupt("grid count " + std::to_string(grids));
-    if (offsets) walkIndexedGrids(w, file, grids);
-    else walkStreamedGrids(w, file, grids);
+    if (offsets) walkIndexedGrids(w, file, grids, layout);
+    else walkStreamedGrids(w, file, grids, layout);
+    return layout;
 }
 
 // A file as it stands on disk: the same path with another inode, size or
 // modification time is walked again.
 using FileIdentity = std::tuple<std::string, dev_t, ino_t, off_t, time_t, long>;
 
-// Files this process has walked and found sound: the density, its role
-// grids and the grid-name lookup each open the same file, and one walk
-// checks every grid in it.
+// Files this process has walked and found sound, with their layouts: the
+// density, its role grids and the grid-name lookup each open the same
+// file, and one walk checks every grid in it.
 struct WalkedFiles {
     std::mutex mutex;
-    std::set<FileIdentity> files;
+    std::map<FileIdentity, std::shared_ptr<const VdbLayout>> files;
 };
 
 WalkedFiles& walkedFiles() {
@@ -219,21 +226,22 @@ WalkedFiles& walkedFiles() {
     return walked;
 }
 
-bool walkedBefore(const FileIdentity& file) {
+std::shared_ptr<const VdbLayout> walkedBefore(const FileIdentity& file) {
     WalkedFiles& walked = walkedFiles();
     std::lock_guard<std::mutex> lock(walked.mutex);
-    return walked.files.count(file) > 0;
+    const auto it = walked.files.find(file);
+    return it == walked.files.end() ? nullptr : it->second;
 }
 
-void rememberWalked(const FileIdentity& file) {
+void rememberWalked(const FileIdentity& file, std::shared_ptr<const VdbLayout> layout) {
     WalkedFiles& walked = walkedFiles();
     std::lock_guard<std::mutex> lock(walked.mutex);
-    walked.files.insert(file);
+    walked.files[file] = std::move(layout);
 }
 
 // The whole file in memory for the walk: mapped where the system can map
 // it (only the pages the walk reads are loaded), read otherwise.
-void walkFile(int fd, std::uint64_t size, const std::string& path) {
+VdbLayout walkFile(int fd, std::uint64_t size, const std::string& path) {
     if (size == 0) return walk(nullptr, 0, path);
     void* mapped = mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
     if (mapped == MAP_FAILED) {
@@ -246,26 +254,27 @@ void walkFile(int fd, std::uint64_t size, const std::string& path) {
         std::uint64_t size;
         ~Unmap() { munmap(at, size); }
     } unmap{mapped, size};
-    walk(static_cast<const char*>(mapped), size, path);
+    return walk(static_cast<const char*>(mapped), size, path);
 }
 
 }  // namespace
 
-void preflightVdb(const std::string& path) {
+std::shared_ptr<const VdbLayout> preflightVdb(const std::string& path) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return;  // unreadable: the caller's open says so
+    if (fd < 0) return nullptr;  // unreadable: the caller's open says so
     struct Close {
         int fd;
         ~Close() { ::close(fd); }
     } close{fd};
     struct stat st {};
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return;  // the caller's checks name it
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return nullptr;  // the caller's checks name it
     const FileIdentity file{path, st.st_dev, st.st_ino, st.st_size, st.st_mtim.tv_sec, st.st_mtim.tv_nsec};
-    if (walkedBefore(file)) return;
-    walkFile(fd, std::uint64_t(st.st_size), path);
-    rememberWalked(file);
+    if (auto layout = walkedBefore(file)) return layout;
+    auto layout = std::make_shared<const VdbLayout>(walkFile(fd, std::uint64_t(st.st_size), path));
+    rememberWalked(file, layout);
+    return layout;
 }
 
-void preflightVdbBytes(const std::string& bytes, const std::string& name) { walk(bytes.data(), bytes.size(), name); }
+VdbLayout preflightVdbBytes(const std::string& bytes, const std::string& name) { return walk(bytes.data(), bytes.size(), name); }
 
 }  // namespace weft

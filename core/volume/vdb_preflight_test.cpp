@@ -13,6 +13,7 @@
 
 #include <cstring>
 
+#include "core/volume/vdb_leaf_reader.hpp"
 #include "core/volume/volume.hpp"
 
 #include "core/base/error.hpp"
@@ -218,6 +219,37 @@ std::string writeWith(const std::filesystem::path& path, std::vector<openvdb::Fl
     return test::readBytes(path);
 }
 
+// OpenVDB's own read of a grid, every leaf loaded as it loads them.
+template <class GridT>
+typename GridT::Ptr readByOpenVdb(const std::filesystem::path& path, const std::string& name) {
+    openvdb::io::File file(path.string());
+    file.open(false);
+    return openvdb::gridPtrCast<GridT>(file.readGrid(name));
+}
+
+// The same topology and the same bits in every voxel (NaNs included) and tile.
+template <class GridT>
+void expectSameTree(const GridT& got, const GridT& want) {
+    ASSERT_EQ(got.tree().leafCount(), want.tree().leafCount());
+    EXPECT_EQ(got.tree().activeVoxelCount(), want.tree().activeVoxelCount());
+    EXPECT_EQ(got.tree().activeTileCount(), want.tree().activeTileCount());
+    int differing = 0;
+    for (auto leaf = want.tree().cbeginLeaf(); leaf; ++leaf) {
+        const auto* other = got.tree().probeConstLeaf(leaf->origin());
+        ASSERT_NE(other, nullptr) << leaf->origin();
+        EXPECT_TRUE(other->getValueMask() == leaf->getValueMask()) << leaf->origin();
+        differing += std::memcmp(other->buffer().data(), leaf->buffer().data(), sizeof(typename GridT::ValueType) * 512) != 0;
+    }
+    EXPECT_EQ(differing, 0);
+    for (auto tile = want.tree().cbeginValueAll(); tile; ++tile)
+        if (!tile.isVoxelValue()) {
+            EXPECT_EQ(got.tree().getValue(tile.getCoord()), *tile) << tile.getCoord();
+            EXPECT_EQ(got.tree().isValueOn(tile.getCoord()), tile.isValueOn()) << tile.getCoord();
+        }
+}
+
+// weft decodes the leaves itself where the walk found them
+// (vdb_leaf_reader.hpp): the grids equal OpenVDB's own read of the file.
 TEST_F(VdbPreflight, FloatTreesOfEveryCompressionPassAndRead) {
     const auto grids = gridsOfEveryRecord();
     const std::uint32_t mask = openvdb::io::COMPRESS_ACTIVE_MASK, blosc = openvdb::io::COMPRESS_BLOSC,
@@ -227,10 +259,71 @@ TEST_F(VdbPreflight, FloatTreesOfEveryCompressionPassAndRead) {
             SCOPED_TRACE(std::to_string(compression) + (half ? " half" : ""));
             const auto path = dir / ("c" + std::to_string(compression) + (half ? "h" : "") + ".vdb");
             EXPECT_EQ(verdict(writeWith(path, grids, compression, half)), "");
-            const auto read = readFloatGrid(path.string(), "density");
-            EXPECT_EQ(read->activeVoxelCount(), grids[0]->activeVoxelCount());
-            EXPECT_EQ(readFloatGrid(path.string(), "surface")->activeVoxelCount(), grids[1]->activeVoxelCount());
+            for (const char* name : {"density", "surface"})
+                expectSameTree(*readFloatGrid(path.string(), name), *readByOpenVdb<openvdb::FloatGrid>(path, name));
         }
+}
+
+// A grid opened with delayed loading, as weft opens it, with the walk's layout.
+struct DelayLoaded {
+    openvdb::GridBase::Ptr grid;
+    std::shared_ptr<const VdbLayout> layout;
+};
+DelayLoaded openDelayLoaded(const std::filesystem::path& path, const std::string& name) {
+    DelayLoaded d;
+    d.layout = preflightVdb(path.string());
+    openvdb::io::File file(path.string());
+    file.setCopyMaxBytes(0);
+    file.open(true);
+    d.grid = file.readGrid(name);
+    return d;
+}
+
+// Every leaf is decoded from the mapped file; one the layout misplaces, or a
+// file that changed size since its walk, loads as OpenVDB loads it.
+TEST_F(VdbPreflight, LeavesAreDecodedWhereTheWalkFoundThemAndLoadedByOpenVdbElsewhere) {
+    const auto path = dir / "leaves.vdb";
+    writeWith(path, gridsOfEveryRecord(), openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK, false);
+    const auto want = readByOpenVdb<openvdb::FloatGrid>(path, "density");
+    const std::size_t leaves = want->tree().leafCount();
+    ASSERT_GT(leaves, 10u);
+    {
+        DelayLoaded d = openDelayLoaded(path, "density");
+        EXPECT_EQ(loadLeaves(d.grid, path.string(), d.layout.get(), &d.layout->grids.at("density")), leaves);
+        expectSameTree(*openvdb::gridPtrCast<openvdb::FloatGrid>(d.grid), *want);
+    }
+    {
+        DelayLoaded d = openDelayLoaded(path, "density");
+        VdbGridLayout moved = d.layout->grids.at("density");
+        moved.leaves[3].origin[0] += 8;
+        EXPECT_EQ(loadLeaves(d.grid, path.string(), d.layout.get(), &moved), leaves - 1);
+        expectSameTree(*openvdb::gridPtrCast<openvdb::FloatGrid>(d.grid), *want);
+    }
+    {
+        DelayLoaded d = openDelayLoaded(path, "density");
+        VdbLayout resized = *d.layout;
+        resized.fileSize += 1;
+        EXPECT_EQ(loadLeaves(d.grid, path.string(), &resized, &resized.grids.at("density")), 0u);
+        expectSameTree(*openvdb::gridPtrCast<openvdb::FloatGrid>(d.grid), *want);
+    }
+}
+
+// The walk records every leaf buffer with its origin, in the tree's own leaf order.
+TEST_F(VdbPreflight, TheLayoutPlacesEveryLeaf) {
+    const auto grids = gridsOfEveryRecord();
+    const VdbLayout layout = preflightVdbBytes(writeWith(dir / "layout.vdb", grids, openvdb::io::COMPRESS_BLOSC, false), "layout.vdb");
+    EXPECT_EQ(layout.fileSize, test::readBytes(dir / "layout.vdb").size());
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+        const auto it = layout.grids.find(grids[g]->getName());
+        ASSERT_NE(it, layout.grids.end()) << grids[g]->getName();
+        const auto& leaves = it->second.leaves;
+        ASSERT_EQ(leaves.size(), grids[g]->tree().leafCount());
+        std::size_t i = 0;
+        for (auto leaf = grids[g]->tree().cbeginLeaf(); leaf; ++leaf, ++i) {
+            EXPECT_EQ(openvdb::Coord(leaves[i].origin[0], leaves[i].origin[1], leaves[i].origin[2]), leaf->origin()) << i;
+            if (i > 0) EXPECT_GT(leaves[i].pos, leaves[i - 1].pos);
+        }
+    }
 }
 
 // One leaf of incompressible values, so zip stores its chunk as is.
@@ -344,6 +437,7 @@ TEST_F(VdbPreflight, Vec3sTreesAreWalked) {
         file.close();
         const std::string bytes = test::readBytes(dir / "vel.vdb");
         EXPECT_EQ(verdict(bytes), "") << (half ? "half" : "float");
+        expectSameTree(*readVec3Grid((dir / "vel.vdb").string(), "vel", "velocity"), *readByOpenVdb<openvdb::Vec3SGrid>(dir / "vel.vdb", "vel"));
         EXPECT_NE(verdict(bytes.substr(0, bytes.size() - 40)), "") << "a cut file passed, " << (half ? "half" : "float");
     }
 }

@@ -12,6 +12,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
+#include "core/volume/vdb_leaf_reader.hpp"
 #include "core/volume/vdb_preflight.hpp"
 
 namespace weft {
@@ -75,15 +76,15 @@ BBoxd Volume::worldBox() const {
 namespace {
 
 // Reads every leaf buffer of a grid opened with delayed loading, in
-// parallel (each reads its own bytes of the mapped file), instead of one
-// seek and read system call after another as OpenVDB's plain read does.
-template <class GridT>
-void loadLeavesInParallel(const openvdb::GridBase::Ptr& base) {
-    const auto grid = openvdb::gridPtrCast<GridT>(base);
-    if (!grid) return;
+// parallel (each reads its own bytes of the mapped file: vdb_leaf_reader.hpp),
+// instead of one seek and read system call after another as OpenVDB's plain
+// read does.
+void loadLeavesInParallel(const openvdb::GridBase::Ptr& base, const std::string& path, const VdbLayout* file, const std::string& name) {
+    const VdbGridLayout* layout = nullptr;
+    if (file)
+        if (const auto it = file->grids.find(name); it != file->grids.end()) layout = &it->second;
     try {
-        openvdb::tree::LeafManager<const typename GridT::TreeType> leaves(grid->tree());
-        leaves.foreach([](const typename GridT::TreeType::LeafNodeType& leaf, std::size_t) { (void)leaf.buffer().data(); });
+        loadLeaves(base, path, file, layout);
     } catch (...) {
         // A leaf whose bytes failed to decode is left half loaded (still
         // marked out of core over its new buffer), and destroying it would
@@ -101,7 +102,7 @@ openvdb::GridBase::Ptr readGridOf(const std::string& path, const std::string& gr
                                   bool (*accepts)(const openvdb::GridBase&)) {
     initVdb();
     requireRegularFile(path, "volume");
-    preflightVdb(path);  // lengths and counts OpenVDB would trust
+    const std::shared_ptr<const VdbLayout> layout = preflightVdb(path);  // lengths and counts OpenVDB would trust
     openvdb::io::File file(path);
     file.setCopyMaxBytes(0);  // map the file itself, no private copy in the temp folder: it is read whole below
     try {
@@ -136,8 +137,7 @@ openvdb::GridBase::Ptr readGridOf(const std::string& path, const std::string& gr
     openvdb::GridBase::Ptr base;
     try {
         base = file.readGrid(chosen);
-        loadLeavesInParallel<openvdb::FloatGrid>(base);
-        loadLeavesInParallel<openvdb::Vec3SGrid>(base);
+        loadLeavesInParallel(base, path, layout.get(), chosen);
     } catch (const std::bad_alloc&) {
         throw Error("volume '" + path + "': " + what + " does not fit in memory (or its header is corrupt)");
     } catch (const std::exception&) {
