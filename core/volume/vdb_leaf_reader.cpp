@@ -101,7 +101,7 @@ template <class GridT>
 std::size_t loadLeavesOf(GridT& grid, const MappedBytes* bytes, const VdbGridLayout* layout) {
     using TreeT = typename GridT::TreeType;
     openvdb::tree::LeafManager<TreeT> leaves(grid.tree());
-    const bool placed = bytes && layout && layout->leaves.size() == leaves.leafCount();
+    const bool placed = bytes && layout && layout->unique && layout->leaves.size() == leaves.leafCount();
     tbb::enumerable_thread_specific<std::unique_ptr<LeafStream<GridT>>> streams;
     std::atomic<std::size_t> decoded{0};
     leaves.foreach([&](typename TreeT::LeafNodeType& leaf, std::size_t i) {

@@ -141,9 +141,13 @@ bool walkGrid(Walker& w, const Descriptor& d, const FileFormat& file, std::optio
     if (d.instance) return true;  // the parent's tree is walked where it lies
     if (!d.floatTree()) return false;
     w.value<std::int32_t>("tree buffer count");
+    // Two grids stored under one name (not as OpenVDB writes them): which
+    // one OpenVDB reads is its choice, so neither keeps a layout.
+    const bool seen = layout.grids.count(d.name) > 0;
     VdbGridLayout& grid = layout.grids[d.name];
-    grid = {file.version, file.libraryMajor, file.libraryMinor, compression, d.halfFloat(), {}};
+    grid = {file.version, file.libraryMajor, file.libraryMinor, compression, d.halfFloat(), {}, !seen};
     vdbwalk::walkFloatTree(w, {file.version, compression, d.halfFloat(), d.components(), topologyEnd, &grid.leaves});
+    if (seen) grid.leaves.clear();
     return true;
 }
 

@@ -23,6 +23,7 @@ struct VdbGridLayout {
     std::uint32_t compression = 0;  // the grid's io::COMPRESS_* flags
     bool half = false;              // values stored as 16-bit floats
     std::vector<vdbwalk::LeafBufferAt> leaves;  // in the order OpenVDB reads them
+    bool unique = true;                         // false: another grid has the name too, and no leaves are kept
 };
 struct VdbLayout {
     std::uint64_t fileSize = 0;                  // of the file walked: positions hold for that file only

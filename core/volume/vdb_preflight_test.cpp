@@ -308,6 +308,22 @@ TEST_F(VdbPreflight, LeavesAreDecodedWhereTheWalkFoundThemAndLoadedByOpenVdbElse
     }
 }
 
+// Two grids stored under one name (edited into the file: OpenVDB writes
+// unique names) keep no layout, and the grid read is OpenVDB's choice.
+TEST_F(VdbPreflight, GridsSharingANameAreLeftToOpenVdb) {
+    auto grids = gridsOfEveryRecord();
+    grids[0]->setName("gridA"), grids[1]->setName("gridB");
+    const auto path = dir / "twins.vdb";
+    std::string b = writeWith(path, grids, openvdb::io::COMPRESS_BLOSC, false);
+    for (std::size_t at = b.find("gridB"); at != std::string::npos; at = b.find("gridB", at)) b[at + 4] = 'A';
+    std::ofstream(path, std::ios::binary) << b;
+    const VdbLayout layout = preflightVdbBytes(b, "twins.vdb");
+    ASSERT_EQ(layout.grids.count("gridA"), 1u);
+    EXPECT_FALSE(layout.grids.at("gridA").unique);
+    EXPECT_TRUE(layout.grids.at("gridA").leaves.empty());
+    expectSameTree(*readFloatGrid(path.string(), "gridA"), *readByOpenVdb<openvdb::FloatGrid>(path, "gridA"));
+}
+
 // The walk records every leaf buffer with its origin, in the tree's own leaf order.
 TEST_F(VdbPreflight, TheLayoutPlacesEveryLeaf) {
     const auto grids = gridsOfEveryRecord();
