@@ -72,12 +72,12 @@ def main():
     print("| technique | 1 thread (ms) | %d threads (ms) | speed-up | images max abs diff |" % cores)
     print("|---|---:|---:|---:|---:|")
     for technique, one, many, ratio, diff in rows:
-        print("| %s | %.1f | %.1f | %.2fx | %g |" % (technique, one, many, ratio, diff))
+        print("| %s | %.1f | %.1f | %.3fx | %g |" % (technique, one, many, ratio, diff))
     identical = sum(r[4] == 0 for r in rows)
     print("speed-up >= 1.9x: %d of %d techniques; identical images: %d of %d" % (held, len(rows), identical, len(rows)))
     slowest = min(rows, key=lambda r: r[3])
     headline("thread scaling 1 -> %d threads, %s, every technique" % (cores, args.res),
-             "%d of %d >= 1.9x (lowest %.2fx, %s); images identical %d of %d" % (
+             "%d of %d >= 1.9x (lowest %.3fx, %s); images identical %d of %d" % (
                  held, len(rows), slowest[3], slowest[0], identical, len(rows)),
              ">= 1.9x each, identical", held == len(rows) and identical == len(rows))
 
