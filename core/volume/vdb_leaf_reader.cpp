@@ -1,7 +1,6 @@
 #include "core/volume/vdb_leaf_reader.hpp"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -9,6 +8,8 @@
 #include <openvdb/tree/LeafManager.h>
 
 #include <tbb/enumerable_thread_specific.h>
+
+#include "core/base/mapped_file.hpp"
 
 #include <atomic>
 #include <istream>
@@ -41,39 +42,22 @@ private:
     char* end_;
 };
 
-// The file mapped read-only for the length of the load, when it still has
-// the size the walk saw.
-class MappedBytes {
-public:
-    MappedBytes(const std::string& path, std::uint64_t expectedSize) {
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd < 0) return;
-        struct stat st {};
-        if (fstat(fd, &st) == 0 && std::uint64_t(st.st_size) == expectedSize && expectedSize > 0) {
-            void* at = mmap(nullptr, expectedSize, PROT_READ, MAP_PRIVATE, fd, 0);
-            if (at != MAP_FAILED) data_ = static_cast<const char*>(at), size_ = expectedSize;
-        }
-        ::close(fd);
-    }
-    ~MappedBytes() {
-        if (data_) munmap(const_cast<char*>(data_), size_);
-    }
-    MappedBytes(const MappedBytes&) = delete;
-    MappedBytes& operator=(const MappedBytes&) = delete;
-    const char* data() const { return data_; }
-    std::size_t size() const { return size_; }
-
-private:
-    const char* data_ = nullptr;
-    std::size_t size_ = 0;
-};
+// Maps the file into `mapped` for the length of the load, when it still
+// has the size the walk saw (leaves `mapped` empty otherwise).
+void mapIfUnchanged(const std::string& path, std::uint64_t walkedSize, std::optional<MappedFile>& mapped) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return;
+    struct stat st {};
+    if (fstat(fd, &st) == 0 && std::uint64_t(st.st_size) == walkedSize) mapped.emplace(fd, walkedSize);
+    ::close(fd);
+}
 
 // One thread's stream over the mapped file, set up as OpenVDB's own grid
 // read sets up its stream for a leaf buffer.
 template <class GridT>
 class LeafStream {
 public:
-    LeafStream(const MappedBytes& bytes, const VdbGridLayout& layout, const GridT& grid)
+    LeafStream(const MappedFile& bytes, const VdbGridLayout& layout, const GridT& grid)
         : buffer_(bytes.data(), bytes.size()), stream_(&buffer_), background_(grid.background()) {
         openvdb::io::setVersion(stream_, openvdb::VersionId(layout.libraryMajor, layout.libraryMinor), layout.fileVersion);
         openvdb::io::setDataCompression(stream_, layout.compression);
@@ -98,7 +82,7 @@ private:
 };
 
 template <class GridT>
-std::size_t loadLeavesOf(GridT& grid, const MappedBytes* bytes, const VdbGridLayout* layout) {
+std::size_t loadLeavesOf(GridT& grid, const MappedFile* bytes, const VdbGridLayout* layout) {
     using TreeT = typename GridT::TreeType;
     openvdb::tree::LeafManager<TreeT> leaves(grid.tree());
     const bool placed = bytes && layout && layout->unique && layout->leaves.size() == leaves.leafCount();
@@ -120,9 +104,9 @@ std::size_t loadLeavesOf(GridT& grid, const MappedBytes* bytes, const VdbGridLay
 }  // namespace
 
 std::size_t loadLeaves(const openvdb::GridBase::Ptr& grid, const std::string& path, const VdbLayout* file, const VdbGridLayout* layout) {
-    std::optional<MappedBytes> bytes;
-    if (file && layout) bytes.emplace(path, file->fileSize);
-    const MappedBytes* mapped = bytes && bytes->data() ? &*bytes : nullptr;
+    std::optional<MappedFile> bytes;
+    if (file && layout) mapIfUnchanged(path, file->fileSize, bytes);
+    const MappedFile* mapped = bytes && *bytes ? &*bytes : nullptr;
     if (auto floats = openvdb::gridPtrCast<openvdb::FloatGrid>(grid)) return loadLeavesOf(*floats, mapped, layout);
     if (auto vectors = openvdb::gridPtrCast<openvdb::Vec3SGrid>(grid)) return loadLeavesOf(*vectors, mapped, layout);
     return 0;

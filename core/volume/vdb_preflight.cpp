@@ -1,7 +1,6 @@
 #include "core/volume/vdb_preflight.hpp"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -19,6 +18,7 @@
 #include <openvdb/version.h>
 
 #include "core/base/error.hpp"
+#include "core/base/mapped_file.hpp"
 #include "core/volume/vdb_float_tree.hpp"
 #include "core/volume/vdb_walker.hpp"
 #include "core/volume/volume.hpp"
@@ -247,18 +247,13 @@ void rememberWalked(const FileIdentity& file, std::shared_ptr<const VdbLayout> l
 // it (only the pages the walk reads are loaded), read otherwise.
 VdbLayout walkFile(int fd, std::uint64_t size, const std::string& path) {
     if (size == 0) return walk(nullptr, 0, path);
-    void* mapped = mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
-    if (mapped == MAP_FAILED) {
+    const MappedFile mapped(fd, size);
+    if (!mapped) {
         std::ifstream in(path, std::ios::binary);
         const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
         return walk(bytes.data(), bytes.size(), path);
     }
-    struct Unmap {
-        void* at;
-        std::uint64_t size;
-        ~Unmap() { munmap(at, size); }
-    } unmap{mapped, size};
-    return walk(static_cast<const char*>(mapped), size, path);
+    return walk(mapped.data(), size, path);
 }
 
 }  // namespace
