@@ -8,7 +8,7 @@ PACKAGES=(
   g++ cmake make pkg-config ccache git
   # the field's libraries
   libopenvdb-dev libboost-dev libboost-iostreams-dev libtbb-dev
-  libopenimageio-dev libopenexr-dev libimath-dev libopencolorio-dev
+  libopenimageio-dev libopenexr-dev libimath-dev libopencolorio-dev libpng-dev
   libembree-dev libosd-dev
   # mesh files: OBJ/MTL (tinyobjloader), PLY (Assimp)
   libtinyobjloader-dev libassimp-dev

@@ -4,6 +4,9 @@
 
 #include <openvdb/math/Mat3.h>
 
+#include <Imath/half.h>
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -118,16 +121,22 @@ public:
             transform->setSrc(OCIO::ROLE_SCENE_LINEAR);
             transform->setDisplay(display);
             transform->setView(view);
-            cpu_ = config_->getProcessor(transform)->getDefaultCPUProcessor();
+            cpu_ = config_->getProcessor(transform)->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F16, OCIO::BIT_DEPTH_UINT8,
+                                                                                OCIO::OPTIMIZATION_DEFAULT);
             description_ = std::string(config_->getName()) + ": " + display + " / " + view;
         } catch (const OCIO::Exception& e) {
             throw Error(std::string("colour management: ") + (env ? "$OCIO config '" + std::string(env) + "': " : "") +
                         e.what());
         }
     }
-    void apply(float* rgb, int count) const override {
-        OCIO::PackedImageDesc desc(rgb, count, 1, 3);
-        cpu_->apply(desc);
+    void encode8(const float* rgb, unsigned char* out, int count) const override {
+        constexpr float kHalfMax = 65504.0f;  // beyond it a half is Inf
+        std::vector<Imath::half> in(3 * std::size_t(count));
+        for (std::size_t i = 0; i < in.size(); ++i)
+            in[i] = Imath::half(std::isfinite(rgb[i]) ? std::clamp(rgb[i], -kHalfMax, kHalfMax) : 0.0f);
+        OCIO::PackedImageDesc src(in.data(), count, 1, OCIO::CHANNEL_ORDERING_RGB, OCIO::BIT_DEPTH_F16, 2, 6, 6 * std::ptrdiff_t(count));
+        OCIO::PackedImageDesc dst(out, count, 1, OCIO::CHANNEL_ORDERING_RGB, OCIO::BIT_DEPTH_UINT8, 1, 3, 3 * std::ptrdiff_t(count));
+        cpu_->apply(src, dst);
     }
     std::string description() const override { return description_; }
 

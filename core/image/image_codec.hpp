@@ -1,7 +1,8 @@
 #pragma once
-// Previews and images other than plain EXRs (which OpenEXR reads and writes
-// itself: core/image/exr_reader.hpp, exr_writer.hpp) are encoded and decoded
-// by OpenImageIO, kept behind this small interface in its own shared module
+// JPEG and TIFF previews, and images other than plain EXRs read back (OpenEXR
+// reads and writes those itself: core/image/exr_reader.hpp, exr_writer.hpp;
+// libpng writes PNG previews: png_writer.hpp), are encoded and decoded by
+// OpenImageIO, kept behind this small interface in its own shared module
 // (weft_oiio.so beside the executable, loaded the first time one is needed:
 // core/base/module_loader.hpp). OpenImageIO links
 // about 260 shared libraries; resolving their symbols at start-up would cost

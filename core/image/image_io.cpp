@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <tbb/parallel_for.h>
+
 #include "core/base/atomic_file.hpp"
 #include "core/image/color.hpp"
 #include "core/base/error.hpp"
@@ -12,6 +14,7 @@
 #include "core/image/exr_reader.hpp"
 #include "core/image/exr_writer.hpp"
 #include "core/image/image_codec.hpp"
+#include "core/image/png_writer.hpp"
 
 namespace weft {
 
@@ -28,6 +31,27 @@ void writeAtomically(const std::string& path, const ImageFileSpec& spec, const v
     const std::string error = imageCodec().write(out.tempPath(), spec, pixels);
     if (!error.empty()) throw Error("cannot write '" + path + "': " + error);
     out.commit();
+}
+
+// Display-encoded 8-bit RGB of the image's R, G, B, in bands of rows in
+// parallel. The bands are fixed, not the threads', so that the transform
+// sees the same runs of pixels on any thread count.
+std::vector<unsigned char> previewBytes(const Image& image, int r, int g, int b) {
+    const int w = image.width(), h = image.height();
+    constexpr int kBandRows = 16;
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(w) * h * 3);
+    const DisplayTransform& display = displayTransform();
+    tbb::parallel_for(0, (h + kBandRows - 1) / kBandRows, [&](int band) {
+        const int y0 = band * kBandRows, y1 = std::min(h, y0 + kBandRows);
+        std::vector<float> rgb(static_cast<std::size_t>(w) * (y1 - y0) * 3);
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                float* dst = &rgb[(static_cast<std::size_t>(y - y0) * w + x) * 3];
+                dst[0] = image.at(x, y, r), dst[1] = image.at(x, y, g), dst[2] = image.at(x, y, b);
+            }
+        display.encode8(rgb.data(), &bytes[static_cast<std::size_t>(y0) * w * 3], w * (y1 - y0));
+    });
+    return bytes;
 }
 
 }  // namespace
@@ -73,17 +97,13 @@ void writePreview(const Image& image, const std::string& path) {
     const int w = image.width(), h = image.height();
     const int r = image.channelIndex("R"), g = image.channelIndex("G"), b = image.channelIndex("B");
     if (r < 0 || g < 0 || b < 0) throw Error("preview '" + path + "': the image has no R, G, B channels");
-    std::vector<float> rgb(static_cast<std::size_t>(w) * h * 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float* dst = &rgb[(static_cast<std::size_t>(y) * w + x) * 3];
-            dst[0] = image.at(x, y, r), dst[1] = image.at(x, y, g), dst[2] = image.at(x, y, b);
-        }
-    displayTransform().apply(rgb.data(), w * h);
-    std::vector<unsigned char> bytes(rgb.size());
-    for (std::size_t i = 0; i < rgb.size(); ++i) {
-        const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
-        bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
+    const std::vector<unsigned char> bytes = previewBytes(image, r, g, b);
+    if (lowerExtension(path) == ".png") {  // libpng, without loading OpenImageIO
+        AtomicOutput out(path);
+        const std::string error = writePngRgb8(out.tempPath(), w, h, bytes.data());
+        if (!error.empty()) throw Error("cannot write '" + path + "': " + error);
+        out.commit();
+        return;
     }
     ImageFileSpec spec;
     spec.width = w, spec.height = h, spec.fullWidth = w, spec.fullHeight = h;

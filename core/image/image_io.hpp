@@ -1,5 +1,5 @@
 #pragma once
-// Image files (OpenEXR; OpenImageIO through core/image/image_codec.hpp): multi-channel EXR with render metadata,
+// Image files (OpenEXR; libpng; OpenImageIO through core/image/image_codec.hpp): multi-channel EXR with render metadata,
 // and display-referred previews (PNG/JPEG/TIFF) through OpenColorIO.
 #include <string>
 #include <utility>
@@ -34,8 +34,10 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
 // attributes and window the data and display windows, when given.
 Image readImage(const std::string& path, Metadata* metadata = nullptr, ImageWindow* window = nullptr);
 
-// Writes an 8-bit display-referred preview (format from the extension),
-// composited over black, through the OCIO display transform; atomically.
+// Writes an 8-bit display-referred preview (format from the extension:
+// PNG through libpng, core/image/png_writer.hpp; JPEG and TIFF through
+// OpenImageIO), composited over black, through the OCIO display transform;
+// atomically.
 void writePreview(const Image& image, const std::string& path);
 
 // Whether the extension names a preview format (not EXR).
