@@ -15,7 +15,7 @@ public:
     // The display's 8-bit values of count interleaved scene-linear RGB
     // pixels. The pixels reach OpenColorIO as half floats, which lets it
     // apply the transform through tables (a tenth of the time of float
-    // input; a value lands one step of 255 off in about 1% of cases); NaN
+    // input; a value lands one step of 255 off in under 1% of cases); NaN
     // and Inf show as the display's black.
     virtual void encode8(const float* rgb, unsigned char* out, int count) const = 0;
     virtual std::string description() const = 0;

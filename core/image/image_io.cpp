@@ -1,7 +1,6 @@
 #include "core/image/image_io.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 
 #include <tbb/parallel_for.h>
