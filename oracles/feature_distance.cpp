@@ -1,6 +1,5 @@
 #include "oracles/feature_distance.hpp"
 
-#include <openvdb/tools/Morphology.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
@@ -15,6 +14,7 @@
 #include <string>
 
 #include "core/volume/octant_shift.hpp"
+#include "core/volume/topology_dilation.hpp"
 
 namespace weft {
 
@@ -90,7 +90,7 @@ openvdb::MaskGrid::Ptr activeAndFaceNeighboursOf(const GridT& grid, const openvd
     openvdb::MaskGrid::Ptr mask = shiftedMask(grid.transform(), shift);
     addShiftedTopology(grid.tree(), shift, mask->tree());
     mask->tree().voxelizeActiveTiles();
-    openvdb::tools::dilateActiveValues(mask->tree(), 1, openvdb::tools::NN_FACE, openvdb::tools::EXPAND_TILES);
+    dilateTopology(mask->tree(), 1, openvdb::tools::NN_FACE, openvdb::tools::EXPAND_TILES);
     return mask;
 }
 
@@ -116,7 +116,7 @@ OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const Oracle
     ring.voxelizeActiveTiles();
     const int rings = ringCount(ctx, cap);
     for (int k = 1; k <= rings; ++k) {
-        tools::dilateActiveValues(ring, 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
+        dilateTopology(ring, 1, tools::NN_FACE_EDGE_VERTEX, tools::EXPAND_TILES);
         ring.topologyDifference(*distance);
         tools::pruneInactive(ring);
         ring.voxelizeActiveTiles();

@@ -1,12 +1,13 @@
 #include "core/volume/leaf_reach.hpp"
 
-#include <openvdb/tools/Morphology.h>
 #include <openvdb/tree/ValueAccessor.h>
 
 #include <algorithm>
 #include <iterator>
 #include <stdexcept>
 #include <string>
+
+#include "core/volume/topology_dilation.hpp"
 
 namespace weft {
 
@@ -99,7 +100,7 @@ std::vector<openvdb::Coord> leafOriginsNear(const openvdb::MaskTree& mask, int r
         }
     }
     if (const int steps = (std::max(reach, 0) + 7) / 8)
-        openvdb::tools::dilateActiveValues(leaves, steps, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
+        dilateTopology(leaves, steps, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::IGNORE_TILES);
     leaves.voxelizeActiveTiles();
     std::vector<openvdb::Coord> origins;
     origins.reserve(std::size_t(leaves.activeVoxelCount()));

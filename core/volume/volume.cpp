@@ -3,7 +3,6 @@
 #include <openvdb/io/File.h>
 #include <openvdb/tree/LeafManager.h>
 #include <openvdb/tools/Count.h>
-#include <openvdb/tools/Morphology.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
+#include "core/volume/topology_dilation.hpp"
 #include "core/volume/vdb_leaf_reader.hpp"
 #include "core/volume/vdb_preflight.hpp"
 
@@ -47,8 +47,8 @@ openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume, openvdb::F
     openvdb::FloatGrid::Ptr both = visible ? visible : volume.grid->deepCopy();
     if (volume.emission) both->tree().topologyUnion(volume.emission->tree());
     if (volume.motion && volume.motionReach > 0)  // one 26-neighbour dilation per voxel reached (Chebyshev <= Euclidean)
-        openvdb::tools::dilateActiveValues(both->tree(), int(std::ceil(volume.motionReach)), openvdb::tools::NN_FACE_EDGE_VERTEX,
-                                           openvdb::tools::EXPAND_TILES);
+        dilateTopology(both->tree(), int(std::ceil(volume.motionReach)), openvdb::tools::NN_FACE_EDGE_VERTEX,
+                       openvdb::tools::EXPAND_TILES);
     both->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
     return both;
 }
