@@ -25,9 +25,12 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-void writeAtomically(const std::string& path, const ImageFileSpec& spec, const void* pixels) {
+// Writes path through a temporary file: `write` writes the temporary and
+// returns "" or what went wrong.
+template <class Write>
+void writeAtomically(const std::string& path, Write&& write) {
     AtomicOutput out(path);
-    const std::string error = imageCodec().write(out.tempPath(), spec, pixels);
+    const std::string error = write(out.tempPath());
     if (!error.empty()) throw Error("cannot write '" + path + "': " + error);
     out.commit();
 }
@@ -97,19 +100,14 @@ void writePreview(const Image& image, const std::string& path) {
     const int r = image.channelIndex("R"), g = image.channelIndex("G"), b = image.channelIndex("B");
     if (r < 0 || g < 0 || b < 0) throw Error("preview '" + path + "': the image has no R, G, B channels");
     const std::vector<unsigned char> bytes = previewBytes(image, r, g, b);
-    if (lowerExtension(path) == ".png") {  // libpng, without loading OpenImageIO
-        AtomicOutput out(path);
-        const std::string error = writePngRgb8(out.tempPath(), w, h, bytes.data());
-        if (!error.empty()) throw Error("cannot write '" + path + "': " + error);
-        out.commit();
-        return;
-    }
+    if (lowerExtension(path) == ".png")  // libpng, without loading OpenImageIO
+        return writeAtomically(path, [&](const std::string& temp) { return writePngRgb8(temp, w, h, bytes.data()); });
     ImageFileSpec spec;
     spec.width = w, spec.height = h, spec.fullWidth = w, spec.fullHeight = h;
     spec.channels = {"R", "G", "B"};
     spec.uint8 = true;
     spec.attributes = {{"oiio:ColorSpace", "sRGB"}};
-    writeAtomically(path, spec, bytes.data());
+    writeAtomically(path, [&](const std::string& temp) { return imageCodec().write(temp, spec, bytes.data()); });
 }
 
 }  // namespace weft
