@@ -41,17 +41,6 @@ void TransferFunction::buildTable() {
     tableOffset_ = float(-rangeMin_ * kTableSize / (rangeMax_ - rangeMin_));
 }
 
-bool TransferFunction::transparentOver(float lo, float hi) const {
-    if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
-    if (lo == hi) return lookup(lo).extinction == 0.0f;  // interpolating equal values gives that value exactly
-    const auto entry = [&](float value) {  // lookup's table position, clamped
-        return std::clamp(double(value) * tableScale_ + tableOffset_, 0.0, double(kTableSize));
-    };
-    const int first = std::max(0, int(entry(std::min(lo, hi))) - 1);
-    const int last = std::min(kTableSize, int(entry(std::max(lo, hi))) + 2);
-    return visibleBefore_[last + 1] == visibleBefore_[first];
-}
-
 std::array<double, 2> TransferFunction::extinctionBounds(double lo, double hi) const {
     const double s0 = normalize(std::min(lo, hi)), s1 = normalize(std::max(lo, hi));
     double emin = std::min(atS(s0).extinction, atS(s1).extinction), emax = std::max(atS(s0).extinction, atS(s1).extinction);

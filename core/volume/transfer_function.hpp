@@ -66,8 +66,17 @@ public:
     // [lo, hi], and so for any interpolation of values in it: every table
     // entry its interpolation can read there (one more on each side, for
     // rounding) is zero; where lo == hi, lookup(lo) itself. False for a
-    // non-finite bound.
-    bool transparentOver(float lo, float hi) const;
+    // non-finite bound. Defined here: visibleCells asks it for every cell.
+    bool transparentOver(float lo, float hi) const {
+        if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+        if (lo == hi) return lookup(lo).extinction == 0.0f;  // interpolating equal values gives that value exactly
+        const auto entry = [&](float value) {  // lookup's table position, clamped
+            return std::clamp(double(value) * tableScale_ + tableOffset_, 0.0, double(kTableSize));
+        };
+        const int first = std::max(0, int(entry(std::min(lo, hi))) - 1);
+        const int last = std::min(kTableSize, int(entry(std::max(lo, hi))) + 2);
+        return visibleBefore_[last + 1] == visibleBefore_[first];
+    }
 
     // The default for a bare grid: a smoke-like ramp over [0, maxValue].
     static TransferFunction defaultFor(double minValue, double maxValue);
