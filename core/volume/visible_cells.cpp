@@ -91,7 +91,7 @@ CellBits visibleCellsOf(const Leaf& leaf, const openvdb::FloatGrid::ConstAccesso
 openvdb::Coord cornerStep(int a) { return openvdb::Coord(8 * (a & 1), 8 * ((a >> 1) & 1), 8 * ((a >> 2) & 1)); }
 
 // The output leaf at `origin` (active on its visible cells; made without a
-// value buffer, whose 2 KiB of fresh pages were most of the pass): the cells of
+// value buffer, whose 2 KiB allocation and fill were most of the pass): the cells of
 // the up to eight grid leaves at origin + 8 {0,1}^3 that fall in it. Leaf
 // D's cells start at D - 1, so its cells 1..8 lie in leaf D and cell 0 in
 // the leaf below it along that axis.
