@@ -20,7 +20,8 @@ namespace weft {
 // An index-space grid (voxel size 1) whose active voxels are the low
 // corners c of the cells that may be visible; null where the background
 // itself is visible, so that nothing may be skipped. Only its topology
-// means anything: its leaves hold no value buffers (a value reads as 0).
+// means anything: its leaves are made without value buffers, so its
+// values are not defined (read as 0 where no buffer was ever made).
 openvdb::FloatGrid::Ptr visibleCells(const openvdb::FloatGrid& grid, const TransferFunction& tf);
 
 // Whether the cell holding an index-space point is one of visibleCells':
