@@ -11,6 +11,15 @@ CameraRays::CameraRays(const Camera& c, int width, int height)
     : eye_(c.eye), forward_((c.target - c.eye).unitSafe()), right_(forward_.cross(c.up).unitSafe()), up_(right_.cross(forward_)),
       tanHalf_(std::tan(0.5 * c.fovY * M_PI / 180.0)), aspect_(double(width) / double(height)), width_(width), height_(height) {}
 
+bool CameraRays::project(const Vec3d& p, double& px, double& py) const {
+    const Vec3d d = p - eye_;
+    const double depth = d.dot(forward_);
+    if (!(depth > 0)) return false;
+    px = (d.dot(right_) / (depth * tanHalf_ * aspect_) + 1.0) * 0.5 * width_;
+    py = (1.0 - d.dot(up_) / (depth * tanHalf_)) * 0.5 * height_;
+    return true;
+}
+
 Camera lerpCamera(const Camera& a, const Camera& b, double t) {
     Camera c;
     c.eye = a.eye + (b.eye - a.eye) * t;

@@ -47,6 +47,9 @@ public:
         const double sy = (1.0 - 2.0 * py / height_) * tanHalf_;
         return {eye_, (forward_ + right_ * sx + up_ * sy).unitSafe()};
     }
+    // The image point whose ray passes through p: at()'s inverse. False
+    // where p is not in front of the eye (no ray of the image reaches it).
+    bool project(const Vec3d& p, double& px, double& py) const;
 
 private:
     Vec3d eye_, forward_, right_, up_;

@@ -238,10 +238,9 @@ void VisibleBlocks::intervals(const IndexRay& indexRay, double perU, std::vector
     if (!(tIn <= tOut)) return;
     const std::size_t first = out.size();
     const auto visitBlock = [&](int bx, int by, int bz, const Box& box) {
-        const Vec3d corner = lo + Vec3d(bx, by, bz) * 8.0;
-        double t0 = tIn, t1 = tOut;  // a sample in cell c lies in [c, c + 1): the box's far faces are hi + 1
-        clipToBox(ray, corner + Vec3d(box.lo[0], box.lo[1], box.lo[2]) - Vec3d(kMargin),
-                  corner + Vec3d(box.hi[0] + 1.0, box.hi[1] + 1.0, box.hi[2] + 1.0) + Vec3d(kMargin), t0, t1);
+        const auto [boxLo, boxHi] = boundsOf(bx, by, bz, box);
+        double t0 = tIn, t1 = tOut;
+        clipToBox(ray, boxLo, boxHi, t0, t1);
         if (!(t0 <= t1)) return;
         const RayInterval in{t0 / perU, t1 / perU};
         if (out.size() > first && in.lo <= out.back().hi)

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/volume/volume_ray.hpp"
@@ -48,6 +49,11 @@ public:
     // `perU` (index units per march unit).
     void intervals(const IndexRay& ray, double perU, std::vector<RayInterval>& out) const;
 
+    // fn(lo, hi) for each block's visible box in index space, as
+    // intervals() clips rays against it (the margin included).
+    template <class Fn>
+    void forEachBox(Fn&& fn) const;
+
     std::size_t blockCount() const { return boxes_.size(); }
     std::size_t visibleBlockCount() const;
 
@@ -57,6 +63,13 @@ private:
         bool empty() const { return lo[0] > hi[0]; }
         void add(int l0, int l1, int l2, int h0, int h1, int h2);  // joins the box [l, h] (offsets 0..7)
     };
+    // Block (x, y, z)'s box in index space, widened by kMargin. A sample in
+    // cell c lies in [c, c + 1): the far faces are hi + 1.
+    std::pair<Vec3d, Vec3d> boundsOf(int x, int y, int z, const Box& b) const {
+        const Vec3d corner = origin_.asVec3d() + Vec3d(x, y, z) * 8.0;
+        return {corner + Vec3d(b.lo[0], b.lo[1], b.lo[2]) - Vec3d(kMargin),
+                corner + Vec3d(b.hi[0] + 1.0, b.hi[1] + 1.0, b.hi[2] + 1.0) + Vec3d(kMargin)};
+    }
     bool allocate(const openvdb::CoordBBox& box, std::size_t maxBlocks);  // false: too many blocks
     Box& blockAt(const openvdb::Coord& voxel);
     void measureClearance();
@@ -67,5 +80,18 @@ private:
     std::vector<Box> boxes_;
     std::vector<std::uint8_t> clearance_;  // chessboard distance in blocks to a visible block, at most 255
 };
+
+template <class Fn>
+void VisibleBlocks::forEachBox(Fn&& fn) const {
+    std::size_t i = 0;
+    for (int x = 0; x < dims_[0]; ++x)
+        for (int y = 0; y < dims_[1]; ++y)
+            for (int z = 0; z < dims_[2]; ++z, ++i) {
+                const Box& b = boxes_[i];
+                if (b.empty()) continue;
+                const auto [lo, hi] = boundsOf(x, y, z, b);
+                fn(lo, hi);
+            }
+}
 
 }  // namespace weft

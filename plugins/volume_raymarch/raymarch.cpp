@@ -119,6 +119,7 @@ public:
         const VolumeBvh bounds = scene.volumes.size() > 1 ? VolumeBvh::of(scene.volumes) : VolumeBvh();
         MarchSettings march{params_.step, params_.ertOpacity, scene.volumes.size() > 1 ? &bounds : nullptr, {}};
         for (const auto& d : dense_) march.dense.push_back(d.get());
+        const std::optional<ScreenFootprint> footprint = footprintOf(scene, s);
         // One per row: its own grid accessors and HDDAs, and its counts.
         struct Shader {
             const Raymarch& self;
@@ -127,13 +128,14 @@ public:
             const std::optional<PatternSet>& offsets;
             const MeshAccel* accel;
             float eps;
+            const std::optional<ScreenFootprint>& footprint;
             VolumeMarcher marcher;  // built in place, never copied
             std::optional<CameraRays> rays;  // the camera's frame, where it holds all frame long
             RaymarchCounts counts;
 
             Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o,
-                   const MeshAccel* a, float e, const MarchSettings& m)
-                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), marcher(sc, m, r.skipper_.get()),
+                   const MeshAccel* a, float e, const std::optional<ScreenFootprint>& f, const MarchSettings& m)
+                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), footprint(f), marcher(sc, m, r.skipper_.get()),
                   rays(sc.stillCameraRays(st.width, st.height)) {}
             Rgba operator()(const CameraSample& c) {
                 const Ray ray = rays ? rays->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
@@ -142,7 +144,8 @@ public:
                 ++counts.rays;
                 const SurfaceHit hit = accel ? firstSurface(*accel, ray) : SurfaceHit{};
                 const double tSurface = hit.valid() ? double(hit.t) : std::numeric_limits<double>::infinity();
-                const RayAccumulator acc = marcher.march(ray, tSurface, offset, scene.shutter.frameTime(0, c.time));
+                const bool seen = !footprint || footprint->covers(c.x, c.y);  // else the march would find nothing
+                const RayAccumulator acc = seen ? marcher.march(ray, tSurface, offset, scene.shutter.frameTime(0, c.time)) : RayAccumulator{};
                 if (!hit.valid()) return {acc.r, acc.g, acc.b, acc.opacity()};
                 ++counts.surface;
                 const PixelSampler sampler(s.seed, c.px, c.py, c.index, std::uint32_t(s.spp));
@@ -158,7 +161,15 @@ public:
                 counters.add(kRaysShadow, counts.shadow);
             }
         };
-        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps, march); });
+        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps, footprint, march); });
+    }
+
+    // With the skipper's blocks and a still camera, the pixels whose rays
+    // can reach a visible cell; the others skip the march.
+    std::optional<ScreenFootprint> footprintOf(const Scene& scene, const RenderSettings& s) const {
+        if (!skipper_) return std::nullopt;
+        const std::optional<CameraRays> still = scene.stillCameraRays(s.width, s.height);
+        return still ? skipper_->footprint(scene.volumes, *still, s.width, s.height) : std::nullopt;
     }
 
 private:

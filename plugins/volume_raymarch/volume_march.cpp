@@ -65,6 +65,18 @@ EmptySpaceSkipper::EmptySpaceSkipper(const std::vector<Volume>& volumes) {
     pays_ = boxed > 0 && filled <= 0.75 * boxed;
 }
 
+std::optional<ScreenFootprint> EmptySpaceSkipper::footprint(const std::vector<Volume>& volumes, const CameraRays& rays, int width,
+                                                           int height) const {
+    ScreenFootprint out(rays, width, height);
+    for (std::size_t i = 0; i < volumes.size(); ++i) {
+        if (volumes[i].empty() || (cells_[i] && !blocks_[i] && !intersectors_[i])) continue;  // adds nothing to any ray
+        if (!blocks_[i]) return std::nullopt;
+        const openvdb::math::Transform& xf = volumes[i].grid->transform();
+        blocks_[i]->forEachBox([&](const Vec3d& lo, const Vec3d& hi) { out.addIndexBox(xf, lo, hi); });
+    }
+    return out;
+}
+
 namespace {
 
 SharedCache<std::shared_ptr<const EmptySpaceSkipper>>& skippers() {
