@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/scene/camera.hpp"
+#include "core/volume/visible_blocks.hpp"
 
 namespace weft {
 
@@ -23,6 +24,10 @@ public:
     // a grid with transform `xf`; every pixel where the map is not affine
     // (a frustum) or the box reaches behind the eye.
     void addIndexBox(const openvdb::math::Transform& xf, const Vec3d& lo, const Vec3d& hi);
+    // Every visible box of `blocks`, a grid's with transform `xf`.
+    void addBlocks(const VisibleBlocks& blocks, const openvdb::math::Transform& xf) {
+        blocks.forEachBox([&](const Vec3d& lo, const Vec3d& hi) { addIndexBox(xf, lo, hi); });
+    }
     void markAll() { all_ = true; }
 
     // Whether the ray through the continuous image point (px, py) may cross

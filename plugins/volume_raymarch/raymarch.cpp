@@ -33,7 +33,9 @@
 //               fewer samples are taken. auto (the default) skips where it
 //               pays (emptySpacePays, volume_march.hpp); the skipper is
 //               built once per process for the same volumes
-//               (sharedEmptySpaceSkipper)
+//               (sharedEmptySpaceSkipper); with a still camera, rays
+//               outside the visible blocks' screen footprint skip the
+//               march (core/volume/screen_footprint.hpp)
 //   offset_pattern  per-pixel offsets of the first sample from a pattern set's
 //               third coordinate: interleaved:4x4 gives the 16 pixels of each
 //               tile 16 different strata of the step (Keller & Heidrich 4.3)

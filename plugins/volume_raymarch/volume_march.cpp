@@ -71,8 +71,7 @@ std::optional<ScreenFootprint> EmptySpaceSkipper::footprint(const std::vector<Vo
     for (std::size_t i = 0; i < volumes.size(); ++i) {
         if (volumes[i].empty() || (cells_[i] && !blocks_[i] && !intersectors_[i])) continue;  // adds nothing to any ray
         if (!blocks_[i]) return std::nullopt;
-        const openvdb::math::Transform& xf = volumes[i].grid->transform();
-        blocks_[i]->forEachBox([&](const Vec3d& lo, const Vec3d& hi) { out.addIndexBox(xf, lo, hi); });
+        out.addBlocks(*blocks_[i], volumes[i].grid->transform());
     }
     return out;
 }

@@ -191,15 +191,25 @@ std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> ScatterTracer::ro
 
 const ScatterTracer::Counts& ScatterTracer::counts(const Row& row) { return row.counts; }
 
-Vec3d ScatterTracer::radiance(const Ray& ray, float offset, double time, Row& row, Rng& rng, Vec3d& T, bool& surface) const {
+Vec3d ScatterTracer::radiance(const Ray& ray, float offset, double time, Row& row, Rng& rng, Vec3d& T, bool& surface, bool seen) const {
     Vec3d L(0.0);
     row.time = time;
     SurfaceHit hit;
     if (accel_) hit = firstSurface(*accel_, ray);
     surface = hit.valid();
     const double tSurface = surface ? double(hit.t) : std::numeric_limits<double>::infinity();
-    if (!marchVolumes(ray, tSurface, offset, row, rng, T, L) || !surface) return L;
+    const bool open = !seen || marchVolumes(ray, tSurface, offset, row, rng, T, L);  // unseen: no sample, nothing to add
+    if (!open || !surface) return L;
     return L + T * surfaceRadiance(ray, hit, row, rng);
+}
+
+std::optional<ScreenFootprint> ScatterTracer::footprint(const CameraRays& rays, int width, int height) const {
+    ScreenFootprint out(rays, width, height);
+    for (const ScatterVolume& v : volumes_) {
+        if (!v.reaching) return std::nullopt;
+        out.addBlocks(*v.reaching, v.volume->grid->transform());
+    }
+    return out;
 }
 
 // The volumes this ray crosses, in march units u (voxel lengths of the

@@ -70,7 +70,10 @@ public:
         ScatterTracer tracer(scene, params_, std::move(volumes), accel, accel ? rayEpsilon(scene) : 0.0f);
         if (params_.estimator == ShadowEstimator::Cached) tracer.buildCaches(ctx);
         const ImagePlane plane(plane_, s);
-        return plane.render(ctx, "volume.singlescatter", [&] { return Shader{*this, scene, tracer, s, accel != nullptr, tracer.row(), 0, stillCamera(scene, s)}; });
+        const std::optional<CameraRays> still = stillCamera(scene, s);
+        const std::optional<ScreenFootprint> footprint = still ? tracer.footprint(*still, s.width, s.height) : std::nullopt;
+        return plane.render(ctx, "volume.singlescatter",
+                            [&] { return Shader{*this, scene, tracer, s, accel != nullptr, tracer.row(), 0, still, footprint}; });
     }
 
 private:
@@ -92,6 +95,7 @@ private:
         std::unique_ptr<ScatterTracer::Row, ScatterTracer::RowDeleter> row;
         std::int64_t rays = 0;
         std::optional<CameraRays> still;  // the camera's frame, where it holds all frame long
+        const std::optional<ScreenFootprint>& footprint;  // the pixels whose rays can take a sample; none: all
 
         RgbaD operator()(const CameraSample& c) {
             Rng rng(hashCombine(s.seed, (std::uint64_t(c.py) * s.width + c.px) * 1024 + c.index));
@@ -101,7 +105,8 @@ private:
             ++rays;
             const Ray ray = still ? still->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
             const double time = scene.shutter.frameTime(0, c.time);
-            const Vec3d L = tracer.radiance(ray, offset, time, *row, rng, T, surface);
+            const bool seen = !footprint || footprint->covers(c.x, c.y);
+            const Vec3d L = tracer.radiance(ray, offset, time, *row, rng, T, surface, seen);
             return {L[0], L[1], L[2], surface ? 1.0 : 1.0 - (T[0] + T[1] + T[2]) / 3.0};
         }
         void flush(Counters& counters) const {
