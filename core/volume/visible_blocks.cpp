@@ -52,12 +52,15 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::of(const openvdb::FloatGrid& cells
     if (box.empty()) return nullptr;
     auto blocks = std::make_unique<VisibleBlocks>();
     if (!blocks->allocate(box, maxBlocks)) return nullptr;
+    blocks->masks_.assign(blocks->boxes_.size(), nullptr);
+    static const openvdb::util::NodeMask<3> allOn(true);
     for (auto leaf = cells.tree().cbeginLeaf(); leaf; ++leaf) {
         openvdb::CoordBBox on;  // empty; the leaf adds its active voxels' box (visitVoxels: tight, not the node's)
         leaf->evalActiveBoundingBox(on, true);
         if (on.empty()) continue;
         const openvdb::Coord lo = on.min() - leaf->origin(), hi = on.max() - leaf->origin();
         blocks->blockAt(leaf->origin()).add(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+        blocks->masks_[blocks->blockIndex(leaf->origin())] = &leaf->getValueMask();
     }
     auto tiles = cells.tree().cbeginValueOn();  // active tiles: whole blocks visible
     tiles.setMaxDepth(openvdb::FloatTree::ValueOnCIter::LEAF_DEPTH - 1);
@@ -66,7 +69,10 @@ std::unique_ptr<VisibleBlocks> VisibleBlocks::of(const openvdb::FloatGrid& cells
         tiles.getBoundingBox(tile);
         for (int x = tile.min().x(); x <= tile.max().x(); x += 8)
             for (int y = tile.min().y(); y <= tile.max().y(); y += 8)
-                for (int z = tile.min().z(); z <= tile.max().z(); z += 8) blocks->blockAt(openvdb::Coord(x, y, z)).add(0, 0, 0, 7, 7, 7);
+                for (int z = tile.min().z(); z <= tile.max().z(); z += 8) {
+                    blocks->blockAt(openvdb::Coord(x, y, z)).add(0, 0, 0, 7, 7, 7);
+                    blocks->masks_[blocks->blockIndex(openvdb::Coord(x, y, z))] = &allOn;
+                }
     }
     blocks->measureClearance();
     return blocks;
@@ -92,10 +98,12 @@ bool VisibleBlocks::allocate(const openvdb::CoordBBox& box, std::size_t maxBlock
     return true;
 }
 
-VisibleBlocks::Box& VisibleBlocks::blockAt(const openvdb::Coord& voxel) {
+std::size_t VisibleBlocks::blockIndex(const openvdb::Coord& voxel) const {
     const openvdb::Coord b = voxel - origin_;
-    return boxes_[indexOf(blockOf(b.x()), blockOf(b.y()), blockOf(b.z()))];
+    return indexOf(blockOf(b.x()), blockOf(b.y()), blockOf(b.z()));
 }
+
+VisibleBlocks::Box& VisibleBlocks::blockAt(const openvdb::Coord& voxel) { return boxes_[blockIndex(voxel)]; }
 
 namespace {
 

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/volume/leaf_sampler.hpp"  // floorToInt
 #include "core/volume/volume_ray.hpp"
 
 namespace weft {
@@ -54,6 +55,18 @@ public:
     template <class Fn>
     void forEachBox(Fn&& fn) const;
 
+    // Whether the cell holding index point p is visible: of()'s cells grid
+    // active there (its leaf's mask bit, or an active tile). An array read
+    // and a bit, not a descent of the tree; false outside the blocks. Only
+    // blocks made by of() know their cells (reaching() keeps none).
+    bool cellVisible(const Vec3d& p) const {
+        const unsigned x = unsigned(floorToInt(p.x()) - origin_.x()), y = unsigned(floorToInt(p.y()) - origin_.y()),
+                       z = unsigned(floorToInt(p.z()) - origin_.z());
+        if (x >> 3 >= unsigned(dims_[0]) || y >> 3 >= unsigned(dims_[1]) || z >> 3 >= unsigned(dims_[2])) return false;
+        const openvdb::util::NodeMask<3>* mask = masks_[indexOf(int(x >> 3), int(y >> 3), int(z >> 3))];
+        return mask && mask->isOn((x & 7) << 6 | (y & 7) << 3 | (z & 7));
+    }
+
     std::size_t blockCount() const { return boxes_.size(); }
     std::size_t visibleBlockCount() const;
 
@@ -71,6 +84,7 @@ private:
                 corner + Vec3d(b.hi[0] + 1.0, b.hi[1] + 1.0, b.hi[2] + 1.0) + Vec3d(kMargin)};
     }
     bool allocate(const openvdb::CoordBBox& box, std::size_t maxBlocks);  // false: too many blocks
+    std::size_t blockIndex(const openvdb::Coord& voxel) const;
     Box& blockAt(const openvdb::Coord& voxel);
     void measureClearance();
     std::size_t indexOf(int i, int j, int k) const { return (std::size_t(i) * dims_[1] + j) * dims_[2] + k; }
@@ -78,7 +92,8 @@ private:
     openvdb::Coord origin_;  // low corner of block (0, 0, 0), a multiple of 8
     int dims_[3] = {0, 0, 0};
     std::vector<Box> boxes_;
-    std::vector<std::uint8_t> clearance_;  // chessboard distance in blocks to a visible block, at most 255
+    std::vector<std::uint8_t> clearance_;
+    std::vector<const openvdb::util::NodeMask<3>*> masks_;  // of()'s: per block, its cells' leaf mask, all on for a tile; null: none  // chessboard distance in blocks to a visible block, at most 255
 };
 
 template <class Fn>

@@ -107,6 +107,33 @@ TEST(VisibleBlocks, LeapsOverEmptySpaceButNotOverAVisibleCell) {
     }
 }
 
+// The blocks' cell test answers as the cells grid does (VisibleCellTest
+// descends its tree): inside and around leaves, in a visible tile, on both
+// sides of the origin, a leaf with no active voxel, and far outside.
+TEST(VisibleBlocks, CellTestAgreesWithTheCellsGrid) {
+    initVdb();
+    std::mt19937 rng(29);
+    const openvdb::FloatGrid::Ptr cells = scatteredCells(rng);
+    cells->tree().touchLeaf(openvdb::Coord(-24, 16, 8));  // a leaf, none of its voxels active
+    const auto blocks = VisibleBlocks::of(*cells);
+    ASSERT_TRUE(blocks);
+    VisibleCellTest tree(*cells);
+    // A third each: around the scattered cells, around the tile, anywhere.
+    std::uniform_real_distribution<double> cellsRegion(-33.0, 43.0), tileRegion(126.0, 138.0), anywhere(-45.0, 270.0);
+    int visibleCells = 0, visibleTile = 0;
+    for (int n = 0; n < 600000; ++n) {
+        auto& d = n % 3 == 0 ? cellsRegion : n % 3 == 1 ? tileRegion : anywhere;
+        const Vec3d p(d(rng), d(rng) - (n % 3 == 1 ? 128.0 : 0.0), d(rng) - (n % 3 == 1 ? 128.0 : 0.0));
+        const bool expected = tree(p);
+        ASSERT_EQ(blocks->cellVisible(p), expected) << p;
+        (p.x() < 100 ? visibleCells : visibleTile) += expected;
+    }
+    EXPECT_GT(visibleCells, 100);  // leaves' cells, not only hidden ones
+    EXPECT_GT(visibleTile, 10000);
+    EXPECT_FALSE(blocks->cellVisible(Vec3d(-1e6, 0, 0)));
+    EXPECT_FALSE(blocks->cellVisible(Vec3d(1e6, 1e6, 1e6)));
+}
+
 TEST(VisibleBlocks, NothingVisibleOrTooManyBlocksLeavesItToTheHdda) {
     initVdb();
     auto none = openvdb::FloatGrid::create(0.0f);

@@ -126,8 +126,8 @@ VolumeMarcher::Lookup::Lookup(const Volume& v, const EmptySpaceSkipper* skipper,
     emplaceMotion(motion, v);
     if (!skipper) return;
     if (const VolumeIntersector* prototype = skipper->of(index)) hdda.emplace(*prototype);
-    if (const openvdb::FloatGrid* cells = skipper->cells(index)) visible.emplace(*cells);
     blocks = skipper->blocks(index);
+    if (const openvdb::FloatGrid* cells = skipper->cells(index); cells && !blocks) visible.emplace(*cells);
 }
 
 VolumeMarcher::VolumeMarcher(const Scene& scene, const MarchSettings& settings, const EmptySpaceSkipper* skipper)
@@ -199,7 +199,7 @@ void VolumeMarcher::addSegment(double u, double length, RayAccumulator& acc) {
         if (t < c.ray.t0 || t >= c.ray.t1) continue;
         Vec3d p = c.ray.at(t);
         if (c.lookup->motion && time_ != 0) p = c.lookup->motion->advected(p, time_);
-        if (c.lookup->visible && !(*c.lookup->visible)(p)) continue;  // zero extinction, no emission: adds nothing
+        if (!c.lookup->shows(p)) continue;  // zero extinction, no emission: adds nothing
         const float value = c.lookup->sampler.isSample(p);
         ++samples_;
         if (c.lookup->emission) glow += c.lookup->emission->isSample(p) * c.depthScale;
@@ -264,7 +264,13 @@ bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offs
         if (s.extinction > 0) acc.add(s, segmentOpacity(s.extinction * depthScale, float(h)));  // else it adds nothing
     };
     bool more;
-    if (auto& visible = crossings_.front().lookup->visible)  // a hidden cell's sample has zero extinction: adds nothing
+    // A hidden cell's sample has zero extinction: it adds nothing.
+    if (const VisibleBlocks* blocks = crossings_.front().lookup->blocks)
+        more = marchSteps(in, kMax, offset, acc, [&](double u, double h) {
+            const Vec3d p = ray.at(u * perU);
+            if (blocks->cellVisible(p)) sample(p, h);
+        });
+    else if (auto& visible = crossings_.front().lookup->visible)
         more = marchSteps(in, kMax, offset, acc, [&](double u, double h) {
             const Vec3d p = ray.at(u * perU);
             if ((*visible)(p)) sample(p, h);

@@ -135,11 +135,15 @@ private:
         std::optional<Vec3LeafSampler> emission;  // through emissionAccessor
         std::optional<MotionLookup> motion;
         std::optional<VolumeIntersector> hdda;
-        std::optional<VisibleCellTest> visible;  // skip_empty's cells, where they decide alone
-        const VisibleBlocks* blocks = nullptr;   // and their blocks, where they replace the HDDA
+        // skip_empty's cells where they decide alone: their blocks where those
+        // replace the HDDA (which then answer the cell test too), else the grid.
+        std::optional<VisibleCellTest> visible;
+        const VisibleBlocks* blocks = nullptr;
         double voxelLength;
         bool uniform;  // uniform voxels: index units are voxel lengths exactly
         Lookup(const Volume& v, const EmptySpaceSkipper* skipper, std::size_t index);
+        // False where a sample at index point p adds nothing: a hidden cell.
+        bool shows(const Vec3d& p) { return blocks ? blocks->cellVisible(p) : !visible || (*visible)(p); }
     };
     struct Crossing {  // one volume on the current ray
         Lookup* lookup;
