@@ -50,6 +50,8 @@ public:
     // The image point whose ray passes through p: at()'s inverse. False
     // where p is not in front of the eye (no ray of the image reaches it).
     bool project(const Vec3d& p, double& px, double& py) const;
+    const Vec3d& eye() const { return eye_; }
+    const Vec3d& forward() const { return forward_; }  // unit length
 
 private:
     Vec3d eye_, forward_, right_, up_;

@@ -1,14 +1,19 @@
 #pragma once
 // The pixels of a still pinhole camera's image whose rays can reach a set
-// of boxes: each box's corners projected, the pixels of the rectangle
-// around them marked. A box wholly in front of the eye projects inside the
-// hull of its corners' images, so a ray through an unmarked point misses
-// every box, and a march whose samples can only add something inside them
-// is skipped there: empty space skipped in the image plane, as a GPU volume
-// renderer does by rasterising proxy boxes, instead of ray by ray.
+// of boxes, and how far along them: each box's corners projected, the
+// pixels of the rectangle around them marked with the box's range of depths
+// (along the camera's forward axis). A box wholly in front of the eye
+// projects inside the hull of its corners' images, so a ray through an
+// unmarked point misses every box, and a march whose samples can only add
+// something inside them is skipped there: empty space skipped in the image
+// plane, as a GPU volume renderer does by rasterising proxy boxes, instead
+// of ray by ray. Where a ray does pass, the depths bound where along it a
+// box can be (per tile of pixels), so its walk through the blocks starts and
+// ends there.
 #include <openvdb/math/Transform.h>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/scene/camera.hpp"
@@ -30,22 +35,32 @@ public:
     }
     void markAll() { all_ = true; }
 
-    // Whether the ray through the continuous image point (px, py) may cross
-    // a box; true outside the image (a wide filter's samples), where
-    // nothing was marked.
+    // [t0, t1] of the ray through the continuous image point (px, py), with
+    // unit direction dir (the camera's ray there), that holds every point of
+    // a box it crosses; t0 > t1 where it crosses none. Unbounded outside the
+    // image (a wide filter's samples), where nothing was marked.
+    void rayRange(double px, double py, const Vec3d& dir, double& t0, double& t1) const;
     bool covers(double px, double py) const {
-        if (all_) return true;
-        if (!(px >= 0 && py >= 0 && px < width_ && py < height_)) return true;
-        return marked_[std::size_t(int(py)) * std::size_t(width_) + std::size_t(int(px))] != 0;
+        double t0, t1;
+        rayRange(px, py, rays_.forward(), t0, t1);
+        return t0 <= t1;
     }
     double coveredFraction() const;
 
 private:
-    void markRect(double x0, double y0, double x1, double y1);
+    void markRect(double x0, double y0, double x1, double y1, float nearDepth, float farDepth);
+
+    // Depths are kept per tile of kTile^2 pixels: a sixteenth of the
+    // updates (the footprint of the aneurism scene at 512x512 took 6 ms
+    // per pixel, under 1 ms so), the walk's bounds a little looser.
+    static constexpr int kTile = 4;
 
     CameraRays rays_;
-    int width_, height_;
+    int width_, height_, tilesX_;
     std::vector<std::uint8_t> marked_;  // per pixel, rows
+    // Per tile, rows: the least and greatest depth of the boxes marked
+    // there (rounded outwards); near > far where none is.
+    std::vector<float> near_, far_;
     bool all_ = false;
 };
 

@@ -25,9 +25,9 @@ Camera lookingAtTheOrigin() {
     return c;
 }
 
-// Whether origin + t dir, t >= 0, meets the box [lo, hi] (slabs).
-bool crosses(const Vec3d& origin, const Vec3d& dir, const Vec3d& lo, const Vec3d& hi) {
-    double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+// Whether origin + t dir, t >= 0, meets the box [lo, hi] (slabs), and where.
+bool crosses(const Vec3d& origin, const Vec3d& dir, const Vec3d& lo, const Vec3d& hi, double& t0, double& t1) {
+    t0 = 0, t1 = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         if (dir[a] == 0) {
             if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
@@ -72,9 +72,18 @@ TEST(ScreenFootprint, EveryRayThatCrossesABoxIsCovered) {
             const double px = 0.25 * x, py = 0.25 * y;
             const Ray r = rays.at(px, py);
             const Vec3d o = xf->worldToIndex(r.origin), d = xf->worldToIndex(r.origin + r.dir) - o;
-            const bool any = std::any_of(boxes.begin(), boxes.end(), [&](const auto& b) { return crosses(o, d, b.first, b.second); });
+            double from, to;  // where the footprint puts the boxes along the ray
+            fp.rayRange(px, py, r.dir, from, to);
+            bool any = false;
+            for (const auto& [lo, hi] : boxes) {
+                double t0, t1;  // world t: d is the world direction mapped, not made unit
+                if (!crosses(o, d, lo, hi, t0, t1)) continue;
+                any = true;
+                ASSERT_TRUE(fp.covers(px, py)) << px << " " << py;
+                ASSERT_LE(from, t0) << px << " " << py;
+                ASSERT_GE(to, t1) << px << " " << py;
+            }
             crossing += any;
-            if (any) ASSERT_TRUE(fp.covers(px, py)) << px << " " << py;
         }
     EXPECT_GT(crossing, 100);  // the boxes are in view
     // Tight: the six small boxes' rectangles mark a small part of the image.
@@ -90,6 +99,9 @@ TEST(ScreenFootprint, BoxesBehindTheEyeMarkNothingAndOnesAroundItMarkEverything)
     fp.addIndexBox(*unit, Vec3d(-1, -1, 5), Vec3d(1, 1, 7));  // behind: the camera looks down -z from z = 3
     EXPECT_EQ(fp.coveredFraction(), 0.0);
     EXPECT_FALSE(fp.covers(16, 12));
+    double t0, t1;
+    fp.rayRange(16, 12, rays.at(16, 12).dir, t0, t1);
+    EXPECT_GT(t0, t1) << "nothing along the ray";
     EXPECT_TRUE(fp.covers(-0.5, 12)) << "outside the image nothing is known";
     fp.addIndexBox(*unit, Vec3d(-1, -1, 2), Vec3d(1, 1, 4));  // the eye inside
     EXPECT_EQ(fp.coveredFraction(), 1.0);

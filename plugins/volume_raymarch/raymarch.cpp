@@ -146,8 +146,10 @@ public:
                 ++counts.rays;
                 const SurfaceHit hit = accel ? firstSurface(*accel, ray) : SurfaceHit{};
                 const double tSurface = hit.valid() ? double(hit.t) : std::numeric_limits<double>::infinity();
-                const bool seen = !footprint || footprint->covers(c.x, c.y);  // else the march would find nothing
-                const RayAccumulator acc = seen ? marcher.march(ray, tSurface, offset, scene.shutter.frameTime(0, c.time)) : RayAccumulator{};
+                double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
+                if (footprint) footprint->rayRange(c.x, c.y, ray.dir, t0, t1);  // t0 > t1: the march would find nothing
+                const RayAccumulator acc = t0 <= t1 ? marcher.march(ray, tSurface, offset, scene.shutter.frameTime(0, c.time), t0, t1)
+                                                    : RayAccumulator{};
                 if (!hit.valid()) return {acc.r, acc.g, acc.b, acc.opacity()};
                 ++counts.surface;
                 const PixelSampler sampler(s.seed, c.px, c.py, c.index, std::uint32_t(s.spp));

@@ -176,7 +176,9 @@ void VolumeMarcher::collectIntervals(double uEnd) {
     }
     for (const Crossing& c : crossings_) {
         if (c.lookup->blocks) {
-            c.lookup->blocks->intervals(c.ray, c.perU, intervals_);
+            IndexRay within = c.ray;  // index t = world t x speed
+            within.t0 = std::max(within.t0, blocksFrom_ * c.ray.speed), within.t1 = std::min(within.t1, blocksTo_ * c.ray.speed);
+            if (within.t0 <= within.t1) c.lookup->blocks->intervals(within, c.perU, intervals_);
             continue;
         }
         if (!c.lookup->hdda) continue;  // its transfer function hides it whole
@@ -281,9 +283,10 @@ bool VolumeMarcher::marchInterval(const RayInterval& in, double kMax, float offs
     return more;
 }
 
-RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offset, double time) {
+RayAccumulator VolumeMarcher::march(const Ray& ray, double tSurface, float offset, double time, double t0, double t1) {
     RayAccumulator acc;
     time_ = time;
+    blocksFrom_ = t0, blocksTo_ = t1;
     if (!cross(ray)) return acc;
     const double h = settings_.step;
     const double uHit = std::isfinite(tSurface) ? tSurface * ray.dir.length() / unitLength_ : uEnd_;

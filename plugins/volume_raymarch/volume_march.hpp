@@ -30,6 +30,7 @@
 #include <openvdb/tools/RayIntersector.h>
 
 #include <deque>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -122,8 +123,13 @@ public:
     VolumeMarcher& operator=(const VolumeMarcher&) = delete;
 
     // offset in [0, 1): where the sample sits inside each step; time: the
-    // ray's shutter time in frames from the frame (moving volumes only).
-    RayAccumulator march(const Ray& ray, double tSurface, float offset, double time = 0);
+    // ray's shutter time in frames from the frame (moving volumes only);
+    // [t0, t1]: the stretch of the ray (its world parameter) that holds
+    // every visible block it crosses (a ScreenFootprint's rayRange), where
+    // the walk through the blocks starts and ends. The image is the same.
+    RayAccumulator march(const Ray& ray, double tSurface, float offset, double time = 0,
+                         double t0 = -std::numeric_limits<double>::infinity(),
+                         double t1 = std::numeric_limits<double>::infinity());
     std::int64_t samples() const { return samples_; }
 
 private:
@@ -168,7 +174,8 @@ private:
     double time_ = 0;      // the current ray's shutter time, frames
     bool moving_ = false;  // a crossed volume moves at time_
     bool skipping_ = false;  // marching only the skipper's intervals
-    double u0_ = 0, uEnd_ = 0, unitLength_ = 1;  // first entry, last exit, world length of a march unit
+    double u0_ = 0, uEnd_ = 0, unitLength_ = 1;
+    double blocksFrom_ = 0, blocksTo_ = 0;  // the world stretch march() was given  // first entry, last exit, world length of a march unit
     std::int64_t samples_ = 0;
 };
 
