@@ -92,8 +92,9 @@ private:
     openvdb::Coord origin_;  // low corner of block (0, 0, 0), a multiple of 8
     int dims_[3] = {0, 0, 0};
     std::vector<Box> boxes_;
-    std::vector<std::uint8_t> clearance_;
-    std::vector<const openvdb::util::NodeMask<3>*> masks_;  // of()'s: per block, its cells' leaf mask, all on for a tile; null: none  // chessboard distance in blocks to a visible block, at most 255
+    std::vector<std::uint8_t> clearance_;  // chessboard distance in blocks to a visible block, at most 255
+    // of()'s, per block: its cells' leaf mask, one all on for a tile; null where none.
+    std::vector<const openvdb::util::NodeMask<3>*> masks_;
 };
 
 template <class Fn>
