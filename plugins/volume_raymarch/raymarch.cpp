@@ -121,7 +121,8 @@ public:
         const VolumeBvh bounds = scene.volumes.size() > 1 ? VolumeBvh::of(scene.volumes) : VolumeBvh();
         MarchSettings march{params_.step, params_.ertOpacity, scene.volumes.size() > 1 ? &bounds : nullptr, {}};
         for (const auto& d : dense_) march.dense.push_back(d.get());
-        const std::optional<ScreenFootprint> footprint = footprintOf(scene, s);
+        const std::optional<CameraRays> still = scene.stillCameraRays(s.width, s.height);  // the camera's frame, where it holds all frame long
+        const std::optional<ScreenFootprint> footprint = footprintOf(scene, still, s);
         // One per row: its own grid accessors and HDDAs, and its counts.
         struct Shader {
             const Raymarch& self;
@@ -132,13 +133,13 @@ public:
             float eps;
             const std::optional<ScreenFootprint>& footprint;
             VolumeMarcher marcher;  // built in place, never copied
-            std::optional<CameraRays> rays;  // the camera's frame, where it holds all frame long
+            const std::optional<CameraRays>& rays;
             RaymarchCounts counts;
 
             Shader(const Raymarch& r, const Scene& sc, const RenderSettings& st, const std::optional<PatternSet>& o,
-                   const MeshAccel* a, float e, const std::optional<ScreenFootprint>& f, const MarchSettings& m)
-                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), footprint(f), marcher(sc, m, r.skipper_.get()),
-                  rays(sc.stillCameraRays(st.width, st.height)) {}
+                   const MeshAccel* a, float e, const std::optional<ScreenFootprint>& f, const MarchSettings& m,
+                   const std::optional<CameraRays>& still)
+                : self(r), scene(sc), s(st), offsets(o), accel(a), eps(e), footprint(f), marcher(sc, m, r.skipper_.get()), rays(still) {}
             Rgba operator()(const CameraSample& c) {
                 const Ray ray = rays ? rays->at(c.x, c.y) : scene.cameraAt(c.time).generate(c.x, c.y, s.width, s.height);
                 float offset = self.params_.jitter ? pixelRandom(s.seed, c.px, c.py, c.index, 0) : 0.5f;
@@ -165,15 +166,14 @@ public:
                 counters.add(kRaysShadow, counts.shadow);
             }
         };
-        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps, footprint, march); });
+        return plane.render(ctx, "volume.raymarch", [&] { return Shader(*this, scene, s, offsets, accel, eps, footprint, march, still); });
     }
 
     // With the skipper's blocks and a still camera, the pixels whose rays
     // can reach a visible cell; the others skip the march.
-    std::optional<ScreenFootprint> footprintOf(const Scene& scene, const RenderSettings& s) const {
-        if (!skipper_) return std::nullopt;
-        const std::optional<CameraRays> still = scene.stillCameraRays(s.width, s.height);
-        return still ? skipper_->footprint(scene.volumes, *still, s.width, s.height) : std::nullopt;
+    std::optional<ScreenFootprint> footprintOf(const Scene& scene, const std::optional<CameraRays>& still, const RenderSettings& s) const {
+        if (!skipper_ || !still) return std::nullopt;
+        return skipper_->footprint(scene.volumes, *still, s.width, s.height);
     }
 
 private:

@@ -174,8 +174,8 @@ private:
     double time_ = 0;      // the current ray's shutter time, frames
     bool moving_ = false;  // a crossed volume moves at time_
     bool skipping_ = false;  // marching only the skipper's intervals
-    double u0_ = 0, uEnd_ = 0, unitLength_ = 1;
-    double blocksFrom_ = 0, blocksTo_ = 0;  // the world stretch march() was given  // first entry, last exit, world length of a march unit
+    double u0_ = 0, uEnd_ = 0, unitLength_ = 1;  // first entry, last exit, world length of a march unit
+    double blocksFrom_ = 0, blocksTo_ = 0;        // the world stretch march() was given for the walk through the blocks
     std::int64_t samples_ = 0;
 };
 
