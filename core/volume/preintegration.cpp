@@ -294,6 +294,18 @@ float gridCoord(float s, int resolution) {
     return std::min(x, float(resolution - 1));
 }
 
+// The table coordinate below which clear() holds. Entry e integrates
+// between s = e / (resolution - 1) values; a cell with x < K reads entries
+// up to K, and those lie strictly below the first extinction.
+float clearEntriesOf(const TransferFunction& tf, int resolution) {
+    const double below = tf.zeroExtinctionBelow();
+    if (below == std::numeric_limits<double>::infinity()) return std::numeric_limits<float>::infinity();
+    const double toS = 1.0 / (resolution - 1);
+    int last = -1;
+    while (last + 1 < resolution && (last + 1) * toS < below) ++last;
+    return last >= 1 ? float(last) : -std::numeric_limits<float>::infinity();
+}
+
 }  // namespace
 
 PreintSample PreintegrationTable::integrateSegment(const TransferFunction& tf, double sFront, double sBack,
@@ -329,6 +341,7 @@ PreintegrationTable::PreintegrationTable(const TransferFunction& tf, std::vector
         throw Error("pre-integration table: resolution must be in [2, " + std::to_string(kMaxResolution) +
                     "], got " + std::to_string(resolution_));
     integrator_ = std::make_unique<Integrator>(tf);
+    clearEntries_ = clearEntriesOf(tf, resolution_);
     blocksPerAxis_ = std::size_t((resolution_ + kPreintBlock - 1) / kPreintBlock);
     blockState_ = std::make_unique<std::atomic<std::uint8_t>[]>(blockCount());
     for (std::size_t b = 0; b < blockCount(); ++b) blockState_[b].store(kEmpty, std::memory_order_relaxed);

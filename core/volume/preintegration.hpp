@@ -33,9 +33,11 @@
 // one without emission builds nothing more. For constant extinction tau
 // and e_front == e_back, E = e (1 - exp(-tau L)) / tau, the slab's closed
 // form and volume.raymarch's segment.
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -89,6 +91,13 @@ public:
     // The same for a table built whole (buildAll), without the per-block
     // check: for loops that look up on every sample.
     PreintSample lookupComplete(int lengthIndex, float sFront, float sBack) const;
+    // Whether lookup(any length, sFront, sBack) is exactly zero, known
+    // without reading the table: the four entries of both ends' cells lie
+    // where the transfer function has no extinction, and a segment there
+    // absorbs and emits nothing (noise below a transfer function's first
+    // opaque value: most of a CT scan's segments). Uses lookup's own
+    // coordinate (s x (resolution - 1)), so it never disagrees with it.
+    bool clear(float sFront, float sBack) const { return std::max(sFront, sBack) * float(resolution_ - 1) < clearEntries_; }
 
     // The exact segment integral in double precision (the reference, also
     // used to fill the table). s outside [0, 1] is clamped, NaN read as 0;
@@ -138,6 +147,10 @@ private:
     int resolution_ = 0;
     PreintPrecision precision_ = PreintPrecision::Float32;
     std::size_t blocksPerAxis_ = 0;
+    // clear() holds below this table coordinate: the last entry K >= 1 whose
+    // s (and every entry's before it) lies below the transfer function's
+    // first extinction; -infinity for none, infinity where none absorbs.
+    float clearEntries_ = -std::numeric_limits<float>::infinity();
     std::unique_ptr<Integrator> integrator_;
     // Filled block by block on first use (need), hence mutable.
     mutable std::unique_ptr<std::atomic<std::uint8_t>[]> blockState_;

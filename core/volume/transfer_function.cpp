@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/base/error.hpp"
 
@@ -47,6 +48,13 @@ std::array<double, 2> TransferFunction::extinctionBounds(double lo, double hi) c
     for (const TfPoint& p : points_)
         if (p.s > s0 && p.s < s1) emin = std::min(emin, p.extinction), emax = std::max(emax, p.extinction);
     return {emin, emax};
+}
+
+double TransferFunction::zeroExtinctionBelow() const {
+    for (std::size_t i = 0; i < points_.size(); ++i)
+        if (points_[i].extinction != 0)  // NaN counts as absorbing
+            return i == 0 ? 0.0 : points_[i - 1].s;
+    return std::numeric_limits<double>::infinity();
 }
 
 TransferFunction TransferFunction::defaultFor(double minValue, double maxValue) {

@@ -78,6 +78,12 @@ public:
         return visibleBefore_[last + 1] == visibleBefore_[first];
     }
 
+    // The s below which extinction is exactly zero (the control points up to
+    // the last one before the first with extinction): 0 where s = 0 already
+    // absorbs, infinity where nothing does. A segment between two s below it
+    // absorbs and emits nothing, whatever its length.
+    double zeroExtinctionBelow() const;
+
     // The default for a bare grid: a smoke-like ramp over [0, maxValue].
     static TransferFunction defaultFor(double minValue, double maxValue);
 

@@ -401,3 +401,56 @@ TEST(PreintTable, EntriesBuiltAsNeededInParallelEqualTheWholeTable) {
             EXPECT_NEAR(entry.r, exact.r, 1e-6) << i << " " << j;
         }
 }
+
+// clear() may only claim segments whose lookup is exactly zero, on either
+// precision and any length, and should claim nearly every segment below
+// the first extinction: checked over a fine grid of pairs and random ones.
+TEST(PreintTable, ClearSegmentsLookUpExactlyZero) {
+    const TransferFunction tf(0, 1, {{0.0, {0.9, 0.2, 0.1}, 0.0}, {0.3, {0.9, 0.2, 0.1}, 0.0}, {0.6, {1.0, 0.9, 0.8}, 2.0}});
+    EXPECT_EQ(tf.zeroExtinctionBelow(), 0.3);
+    for (PreintPrecision precision : {PreintPrecision::Float32, PreintPrecision::Bits8}) {
+        const PreintegrationTable table(tf, {0.5, 8.0}, 64, precision);
+        std::vector<std::array<float, 2>> pairs;
+        for (int i = 0; i <= 400; ++i)
+            for (int j = 0; j <= 400; j += 7) pairs.push_back({i / 400.0f, j / 400.0f});
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<float> u(-0.1f, 0.35f);
+        for (int k = 0; k < 20000; ++k) pairs.push_back({u(rng), u(rng)});
+        int claimed = 0, zeroBelowFirstExtinction = 0;
+        for (const auto& [front, back] : pairs) {
+            const bool clear = table.clear(front, back);
+            claimed += clear;
+            for (int length = 0; length < 2; ++length) {
+                const PreintSample s = table.lookup(length, front, back);
+                if (clear) {
+                    ASSERT_EQ(channels(s), channels(PreintSample{0, 0, 0, 0})) << front << " " << back;
+                }
+            }
+            // Both cells (entries at s = e / 63) wholly below s = 0.3: zero, and clear() should know it.
+            if (std::max(front, back) < 17.9f / 63.0f) {
+                ++zeroBelowFirstExtinction;
+                EXPECT_TRUE(clear) << front << " " << back;
+            }
+        }
+        EXPECT_GT(zeroBelowFirstExtinction, 1000);
+        EXPECT_GT(claimed, zeroBelowFirstExtinction);  // and the pairs up to the last clear cell
+        // Past the first extinction a segment absorbs: never clear.
+        EXPECT_FALSE(table.clear(0.0f, 0.31f));
+        EXPECT_GT(table.lookup(1, 0.0f, 0.35f).a, 0.0f);
+    }
+}
+
+TEST(PreintTable, ClearNeverWhereZeroAbsorbsAndAlwaysWhereNothingDoes) {
+    const PreintegrationTable opaque(constantTf(0.5), {1.0}, 32);
+    EXPECT_EQ(constantTf(0.5).zeroExtinctionBelow(), 0.0);
+    for (float s : {-1.0f, 0.0f, 1e-6f, 0.5f, 1.0f}) EXPECT_FALSE(opaque.clear(s, s)) << s;
+    const PreintegrationTable empty(constantTf(0.0), {1.0, 1e6}, 32);
+    EXPECT_TRUE(std::isinf(constantTf(0.0).zeroExtinctionBelow()));
+    for (float s : {-1.0f, 0.0f, 0.5f, 1.0f, 2.0f}) {
+        EXPECT_TRUE(empty.clear(s, 0.25f)) << s;
+        EXPECT_EQ(channels(empty.lookup(1, s, 0.25f)), channels(PreintSample{0, 0, 0, 0})) << s;
+    }
+    // NaN reads as s = 0 in lookup; clear() may say either, but only what holds.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(opaque.clear(nan, nan));
+}
