@@ -94,7 +94,7 @@ public:
     // Whether lookup(any length, sFront, sBack) is exactly zero, known
     // without reading the table: the four entries of both ends' cells lie
     // where the transfer function has no extinction, and a segment there
-    // absorbs and emits nothing (noise below a transfer function's first
+    // absorbs nothing and adds no colour (noise below a transfer function's first
     // opaque value: most of a CT scan's segments). Uses lookup's own
     // coordinate (s x (resolution - 1)), so it never disagrees with it.
     bool clear(float sFront, float sBack) const { return std::max(sFront, sBack) * float(resolution_ - 1) < clearEntries_; }

@@ -81,7 +81,8 @@ public:
     // The s below which extinction is exactly zero (the control points up to
     // the last one before the first with extinction): 0 where s = 0 already
     // absorbs, infinity where nothing does. A segment between two s below it
-    // absorbs and emits nothing, whatever its length.
+    // absorbs nothing and so adds none of the colour, whatever its length
+    // (an emission grid's glow is apart from it).
     double zeroExtinctionBelow() const;
 
     // The default for a bare grid: a smoke-like ramp over [0, maxValue].
