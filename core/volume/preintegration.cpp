@@ -439,14 +439,14 @@ PreintSample mixed(const FreshBuffer<PreintSample>& table, const Bilinear& b) {
 
 }  // namespace
 
-PreintSample PreintegrationTable::lookup(int lengthIndex, float sFront, float sBack) const {
+PreintSample PreintegrationTable::read(int lengthIndex, float sFront, float sBack) const {
     const Bilinear b = bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack);
     needCell(lengthIndex, b.front, b.back);
     return mixed(table_, b);
 }
 
-PreintSample PreintegrationTable::lookupComplete(int lengthIndex, float sFront, float sBack) const {
-    if (!complete_.load(std::memory_order_relaxed)) return lookup(lengthIndex, sFront, sBack);  // not built whole after all
+PreintSample PreintegrationTable::readComplete(int lengthIndex, float sFront, float sBack) const {
+    if (!complete_.load(std::memory_order_relaxed)) return read(lengthIndex, sFront, sBack);  // not built whole after all
     return mixed(table_, bilinear(lengthIndex, lengthCount(), resolution_, sFront, sBack));
 }
 

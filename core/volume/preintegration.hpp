@@ -86,11 +86,16 @@ public:
 
     // s in [0, 1] (tf.normalize(value)); bilinear interpolation between
     // entries; out-of-range s clamped, NaN treated as 0. Builds the entries
-    // it reads when they are not built yet.
-    PreintSample lookup(int lengthIndex, float sFront, float sBack) const;
+    // it reads when they are not built yet. A clear() segment reads nothing
+    // (inline, so the slice loops pay a compare for it, not a call).
+    PreintSample lookup(int lengthIndex, float sFront, float sBack) const {
+        return clearAt(lengthIndex, sFront, sBack) ? PreintSample{0, 0, 0, 0} : read(lengthIndex, sFront, sBack);
+    }
     // The same for a table built whole (buildAll), without the per-block
     // check: for loops that look up on every sample.
-    PreintSample lookupComplete(int lengthIndex, float sFront, float sBack) const;
+    PreintSample lookupComplete(int lengthIndex, float sFront, float sBack) const {
+        return clearAt(lengthIndex, sFront, sBack) ? PreintSample{0, 0, 0, 0} : readComplete(lengthIndex, sFront, sBack);
+    }
     // Whether lookup(any length, sFront, sBack) is exactly zero, known
     // without reading the table: the four entries of both ends' cells lie
     // where the transfer function has no extinction, and a segment there
@@ -118,6 +123,13 @@ public:
 
 private:
     struct Integrator;  // the transfer function's pieces, for building blocks
+    // clear() for a length the table holds (any other is read, and refused there).
+    bool clearAt(int lengthIndex, float sFront, float sBack) const {
+        return lengthIndex >= 0 && lengthIndex < lengthCount() && clear(sFront, sBack);
+    }
+    // lookup() and lookupComplete() from the table's entries.
+    PreintSample read(int lengthIndex, float sFront, float sBack) const;
+    PreintSample readComplete(int lengthIndex, float sFront, float sBack) const;
     // Makes sure the block holding entry (lengthIndex, front, back) is built.
     void need(int lengthIndex, int front, int back) const {
         const std::size_t b = blockOf(lengthIndex, front, back);

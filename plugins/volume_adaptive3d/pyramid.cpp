@@ -235,10 +235,7 @@ float SliceWorker::surfaceBound(const Pyramid& pyramid, int l, int idx, int slic
     const float s0 = pyramid.level(0).s[idx];
     float& sPrev = pyramid.sPrev[idx];
     if (slice > 0 && !(s0 == background0_ && sPrev == background0_)) {
-        // A segment where the transfer function absorbs nothing adds exactly
-        // nothing: counted as the paper's composite, but no table is read.
-        const PreintegrationTable& table = tables0_->forSlices(slice - pyramid.iPrev[idx]);
-        if (!table.clear(sPrev, s0)) pyramid.color[idx].add(table.lookup(0, sPrev, s0));
+        pyramid.color[idx].add(tables0_->forSlices(slice - pyramid.iPrev[idx]).lookup(0, sPrev, s0));
         ++composites_;
     }
     sPrev = s0;

@@ -217,8 +217,7 @@ private:
                 }
                 scalars(k, cur, eCur);
                 for (int v = 0; v < n; ++v) {
-                    const PreintegrationTable& table = *f.tables[v];  // no extinction between the ends: exactly nothing, no read
-                    seg[v] = table.clear(prev[v], cur[v]) ? PreintSample{0, 0, 0, 0} : table.lookupComplete(0, prev[v], cur[v]);
+                    seg[v] = f.tables[v]->lookupComplete(0, prev[v], cur[v]);
                     if (f.emits && (ePrev[v] != Vec3f(0.0f) || eCur[v] != Vec3f(0.0f)))
                         addEmission(seg[v], f.tables[v]->lookupEmission(0, prev[v], cur[v]), ePrev[v], eCur[v]);
                     prev[v] = cur[v], ePrev[v] = eCur[v];

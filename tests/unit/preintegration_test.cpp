@@ -402,9 +402,10 @@ TEST(PreintTable, EntriesBuiltAsNeededInParallelEqualTheWholeTable) {
         }
 }
 
-// clear() may only claim segments whose lookup is exactly zero, on either
-// precision and any length, and should claim nearly every segment below
-// the first extinction: checked over a fine grid of pairs and random ones.
+// clear() may only claim segments whose lookup is exactly zero (every
+// table entry it would read integrates to zero), on either precision and
+// any length, and should claim nearly every segment below the first
+// extinction: checked over a fine grid of pairs and random ones.
 TEST(PreintTable, ClearSegmentsLookUpExactlyZero) {
     const TransferFunction tf(0, 1, {{0.0, {0.9, 0.2, 0.1}, 0.0}, {0.3, {0.9, 0.2, 0.1}, 0.0}, {0.6, {1.0, 0.9, 0.8}, 2.0}});
     EXPECT_EQ(tf.zeroExtinctionBelow(), 0.3);
@@ -424,6 +425,13 @@ TEST(PreintTable, ClearSegmentsLookUpExactlyZero) {
                 const PreintSample s = table.lookup(length, front, back);
                 if (clear) {
                     ASSERT_EQ(channels(s), channels(PreintSample{0, 0, 0, 0})) << front << " " << back;
+                    // lookup() reads nothing there: the entries it would have read integrate to zero.
+                    const auto cell = [](float v) { return std::min(int(std::clamp(v * 63.0f, 0.0f, 63.0f)), 62); };
+                    for (int a : {cell(front), cell(front) + 1})
+                        for (int b : {cell(back), cell(back) + 1}) {
+                            const PreintSample e = PreintegrationTable::integrateSegment(tf, a / 63.0, b / 63.0, table.length(length));
+                            ASSERT_EQ(channels(e), channels(PreintSample{0, 0, 0, 0})) << a << " " << b;
+                        }
                 }
             }
             // Both cells (entries at s = e / 63) wholly below s = 0.3: zero, and clear() should know it.
