@@ -141,16 +141,12 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
     mask.voxelizeActiveTiles();
     auto distance = std::make_shared<RingTree>(kFarRing);
     // LeafDistances gives each voxel its ring (K + 1: farther, whose index
-    // holds the cap as the background's does): the leaf's values as they are.
-    addLeavesNear(*distance, mask, K, [&](const Coord& origin, const std::uint8_t* d) {
+    // holds the cap as the background's does): the leaf's values as they
+    // are, and its value mask on where the ring is at most K.
+    addLeavesNear(*distance, mask, K, [&](const Coord& origin, const std::uint8_t* d, const std::uint64_t* within) {
         auto leaf = std::make_unique<RingTree::LeafNodeType>(origin, kFarRing, false);
         std::memcpy(leaf->buffer().data(), d, RingTree::LeafNodeType::SIZE);
-        // The value mask a 64-voxel word at a time: on where d <= K.
-        for (Index w = 0; w < RingTree::LeafNodeType::SIZE / 64; ++w) {
-            std::uint64_t on = 0;
-            for (Index b = 0; b < 64; ++b) on |= std::uint64_t(d[64 * w + b] <= K) << b;
-            leaf->getValueMask().template getWord<std::uint64_t>(w) = on;
-        }
+        for (Index w = 0; w < RingTree::LeafNodeType::SIZE / 64; ++w) leaf->getValueMask().template getWord<std::uint64_t>(w) = within[w];
         return leaf;
     });
     return fieldOf(std::move(distance), K, ctx, cap);

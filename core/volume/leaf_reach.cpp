@@ -3,6 +3,8 @@
 #include <openvdb/tree/ValueAccessor.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <iterator>
 #include <stdexcept>
 #include <string>
@@ -12,31 +14,46 @@
 namespace weft {
 
 LeafDistances::LeafDistances(int reach)
-    : K_(reach), B_(8 + 2 * reach), inBlock_(B_ >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << B_) - 1), rows_(std::size_t(B_) * B_), grown_(rows_.size()) {
+    : K_(reach), B_(8 + 2 * reach), S_((64 - 2 * reach) / 8), P_(std::bit_width(unsigned(reach + 1))) {
     if (reach < 0 || reach > kMaxLeafReach) throw std::invalid_argument("LeafDistances: reach " + std::to_string(reach) + " outside [0, 16]");
+    const int bits = 8 * S_ + 2 * K_;
+    inBlock_ = bits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << bits) - 1;
+    rows_.resize(std::size_t(B_) * B_), grown_.resize(rows_.size());
+    planes_.resize(64 * std::size_t(P_)), reached_.resize(64);
+    within_.resize(8 * std::size_t(S_)), out_.resize(512 * std::size_t(S_)), found_.resize(std::size_t(S_));
 }
 
 const std::uint8_t* LeafDistances::of(const openvdb::MaskTree& mask, const openvdb::Coord& origin) {
-    if (!load(mask, origin - openvdb::Coord(K_))) return nullptr;
-    std::fill(std::begin(out_), std::end(out_), std::uint8_t(K_ + 1));
-    std::fill(std::begin(done_), std::end(done_), 0);
-    int left = 512 - record(0);
-    for (int k = 1; k <= K_ && left > 0; ++k) grow(k), left -= record(k);
-    return left == 512 ? nullptr : out_;
+    column(mask, origin, 1);
+    return leaf(0);
 }
 
-// The mask's leaves overlapping the block, a word (x) of each leaf at a
-// time: its byte y holds the voxels along z. False when none has a voxel there.
-bool LeafDistances::load(const openvdb::MaskTree& mask, const openvdb::Coord& lo) {
+void LeafDistances::column(const openvdb::MaskTree& mask, const openvdb::Coord& origin, int count) {
+    if (count < 1 || count > S_) throw std::invalid_argument("LeafDistances: a column of " + std::to_string(count) + " leaves, at most " + std::to_string(S_));
+    n_ = count;
+    std::fill(found_.begin(), found_.end(), 0);
+    if (!load(mask, origin - openvdb::Coord(K_), 8 * n_ + 2 * K_)) return;
+    std::fill(planes_.begin(), planes_.end(), 0);
+    bool all = record();
+    for (int k = 1; k <= K_ && !all; ++k) grow(k), all = record();
+    finish();
+}
+
+// The mask's leaves overlapping the block (B x B words, `depth` bits of
+// each along z), a word (x) of each leaf at a time: its byte y holds the
+// voxels along z. False when none has a voxel there. Bits past `depth`
+// stay clear: what they miss is more than K voxels from the column's leaves.
+bool LeafDistances::load(const openvdb::MaskTree& mask, const openvdb::Coord& lo, int depth) {
     std::fill(rows_.begin(), rows_.end(), 0);
     bool any = false;
-    const openvdb::Coord hi = lo + openvdb::Coord(B_ - 1);
+    const openvdb::Coord hi = lo + openvdb::Coord(B_ - 1, B_ - 1, depth - 1);
+    const std::uint64_t inDepth = depth >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << depth) - 1;
     for (int lx = lo.x() & ~7; lx <= hi.x(); lx += 8)
         for (int ly = lo.y() & ~7; ly <= hi.y(); ly += 8)
             for (int lz = lo.z() & ~7; lz <= hi.z(); lz += 8) {
                 const auto* leaf = mask.probeConstLeaf(openvdb::Coord(lx, ly, lz));
                 if (!leaf) continue;
-                const int shift = lz - lo.z();  // of the leaf's z = 0 in the block, -7 .. B - 1
+                const int shift = lz - lo.z();  // of the leaf's z = 0 in the block, -7 .. depth - 1
                 for (int i = 0; i < 8; ++i) {
                     const int bx = lx + i - lo.x();
                     const std::uint64_t word = leaf->getValueMask().template getWord<std::uint64_t>(openvdb::Index(i));
@@ -45,7 +62,7 @@ bool LeafDistances::load(const openvdb::MaskTree& mask, const openvdb::Coord& lo
                         const int by = ly + j - lo.y();
                         const std::uint64_t z = (word >> (8 * j)) & 0xff;
                         if (by < 0 || by >= B_ || !z) continue;
-                        const std::uint64_t bits = (shift >= 0 ? z << shift : z >> -shift) & inBlock_;
+                        const std::uint64_t bits = (shift >= 0 ? z << shift : z >> -shift) & inDepth;
                         row(bx, by) |= bits;
                         any |= bits != 0;
                     }
@@ -56,8 +73,9 @@ bool LeafDistances::load(const openvdb::MaskTree& mask, const openvdb::Coord& lo
 
 // Growth step k: one voxel more in every direction, along z in each word,
 // then y, then x. Only what the remaining K - k steps can carry into the
-// leaf is kept up to date: step k writes rows k .. B - k - 1 in x and y,
-// reading the ring around them that step k - 1 wrote.
+// leaves is kept up to date: step k writes rows k .. B - k - 1 in x and y,
+// reading the ring around them that step k - 1 wrote (along z the words'
+// ends go stale the same way, never reaching the leaves).
 void LeafDistances::grow(int k) {
     const int lo = k - 1, hi = B_ - k + 1;  // the rows step k - 1 left current
     for (int x = lo; x < hi; ++x)
@@ -72,17 +90,69 @@ void LeafDistances::grow(int k) {
             row(x, y) = grown_[std::size_t(x) * B_ + y] | grown_[std::size_t(x - 1) * B_ + y] | grown_[std::size_t(x + 1) * B_ + y];
 }
 
-// Gives distance k to the leaf's voxels first set now; returns how many.
-int LeafDistances::record(int k) {
-    int count = 0;
-    for (int x = 0; x < 8; ++x)
-        for (int y = 0; y < 8; ++y) {
-            std::uint8_t& done = done_[x * 8 + y];
-            std::uint8_t fresh = std::uint8_t((row(x + K_, y + K_) >> K_) & 0xff) & std::uint8_t(~done);
-            done |= fresh;
-            for (; fresh; fresh &= std::uint8_t(fresh - 1), ++count) out_[(x << 6) | (y << 3) | __builtin_ctz(fresh)] = std::uint8_t(k);
+namespace {
+
+// Byte i of the result is bit i of `bits` (0 or 1).
+std::uint64_t bytesOfBits(std::uint64_t bits) {
+    const std::uint64_t picked = (bits * 0x0101010101010101ull) & 0x8040201008040201ull;  // byte i keeps bit i
+    return ((picked + 0x7f7f7f7f7f7f7f7full) >> 7) & 0x0101010101010101ull;           // no byte carries into the next
+}
+
+}  // namespace
+
+// Adds one to the count of every voxel of the column the last growth step
+// did not reach (bit-sliced: a word's 8 n voxels at once), so a voxel
+// first reached at step k counts k, and one never reached K + 1. True when
+// every voxel is reached: later steps would add nothing.
+bool LeafDistances::record() {
+    const std::uint64_t leaves = n_ >= 8 ? ~std::uint64_t(0) : (std::uint64_t(1) << (8 * n_)) - 1;
+    bool all = true;
+    for (int xy = 0; xy < 64; ++xy) {
+        const std::uint64_t bits = (row(K_ + xy / 8, K_ + xy % 8) >> K_) & leaves;
+        reached_[std::size_t(xy)] = bits;
+        all &= bits == leaves;
+        std::uint64_t carry = ~bits & leaves;
+        for (int p = 0; carry && p < P_; ++p) {
+            std::uint64_t& plane = planes_[std::size_t(p) * 64 + std::size_t(xy)];
+            const std::uint64_t next = plane & carry;
+            plane ^= carry, carry = next;
         }
-    return count;
+    }
+    return all;
+}
+
+// The counts as bytes (a leaf's 8 voxels along z are 8 bytes of its
+// offset order) and the voxels reached as value-mask words, per leaf.
+void LeafDistances::finish() {
+    for (int s = 0; s < n_; ++s) {
+        std::uint8_t* out = out_.data() + 512 * std::size_t(s);
+        std::uint64_t* within = within_.data() + 8 * std::size_t(s);
+        int reached = 0;
+        for (int x = 0; x < 8; ++x) {
+            std::uint64_t word = 0;
+            for (int y = 0; y < 8; ++y) {
+                const std::size_t xy = std::size_t(8 * x + y);
+                std::uint64_t d = 0;
+                for (int p = 0; p < P_; ++p) d |= bytesOfBits((planes_[std::size_t(p) * 64 + xy] >> (8 * s)) & 0xff) << p;
+                std::memcpy(out + 8 * xy, &d, 8);
+                word |= ((reached_[xy] >> (8 * s)) & 0xff) << (8 * y);
+            }
+            within[x] = word;
+            reached += __builtin_popcountll(word);
+        }
+        found_[std::size_t(s)] = std::uint16_t(reached);
+    }
+}
+
+std::vector<std::size_t> columnRuns(const std::vector<openvdb::Coord>& origins, int leaves) {
+    std::vector<std::size_t> runs;
+    for (std::size_t i = 0; i < origins.size(); ++i) {
+        const openvdb::Coord& a = origins[runs.empty() ? 0 : runs.back()];
+        const openvdb::Coord& b = origins[i];
+        if (runs.empty() || a.x() != b.x() || a.y() != b.y() || b.z() - a.z() >= 8 * leaves) runs.push_back(i);
+    }
+    runs.push_back(origins.size());
+    return runs;
 }
 
 // A leaf's neighbours within `reach` voxels are the leaves up to

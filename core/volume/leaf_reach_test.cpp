@@ -38,10 +38,12 @@ TEST(LeafReach, GrowingLeafByLeafIsOpenVdbsDilation) {
         openvdb::MaskTree expected = mask;
         if (reach > 0) openvdb::tools::dilateActiveValues(expected, reach, openvdb::tools::NN_FACE_EDGE_VERTEX, openvdb::tools::EXPAND_TILES);
         openvdb::MaskTree grown(false);
-        addLeavesNear(grown, mask, reach, [&](const Coord& origin, const std::uint8_t* d) {
+        addLeavesNear(grown, mask, reach, [&](const Coord& origin, const std::uint8_t* d, const std::uint64_t* within) {
             auto leaf = std::make_unique<openvdb::MaskTree::LeafNodeType>(origin, false);
-            for (openvdb::Index n = 0; n < openvdb::MaskTree::LeafNodeType::SIZE; ++n)
+            for (openvdb::Index n = 0; n < openvdb::MaskTree::LeafNodeType::SIZE; ++n) {
                 if (d[n] <= reach) leaf->setValueOn(n);
+                EXPECT_EQ(d[n] <= reach, bool(within[n / 64] >> (n % 64) & 1)) << origin << " " << n;
+            }
             return leaf;
         });
         EXPECT_EQ(grown.activeVoxelCount(), expected.activeVoxelCount()) << reach;
@@ -75,6 +77,57 @@ TEST(LeafReach, DistancesAreChebyshevDistancesCappedPastTheReach) {
     }
     EXPECT_GT(checked, 512 * 8);
     EXPECT_THROW(LeafDistances(kMaxLeafReach + 1), std::invalid_argument);
+}
+
+TEST(LeafReach, ColumnsGiveEveryLeafItsChebyshevDistances) {
+    // Leaves stacked along z in one column, against the definition, at
+    // reaches whose columns hold 8, 7, 6 and 4 leaves; features on the
+    // stack's ends, just past them and in the leaves between.
+    Rng rng(21);
+    std::vector<Coord> points = {Coord(0), Coord(5, 2, 40), Coord(-3, 7, -6), Coord(1, 1, 57), Coord(12, -9, 30)};
+    for (int i = 0; i < 6; ++i) points.emplace_back(int(rng.next() % 40) - 20, int(rng.next() % 40) - 20, int(rng.next() % 80) - 20);
+    openvdb::MaskTree mask(false);
+    for (const Coord& p : points) mask.setValueOn(p);
+    for (const int reach : {0, 1, 7, 16}) {
+        LeafDistances distances(reach);
+        const int stack = distances.columnLeaves();
+        EXPECT_EQ(stack, (64 - 2 * reach) / 8);
+        int checked = 0, nulls = 0;
+        for (const Coord& base : {Coord(0, 0, -16), Coord(0, 0, 8), Coord(-8, 0, 24), Coord(8, -8, 0), Coord(-24, 16, -8), Coord(200, 0, 0)}) {
+            distances.column(mask, base, stack);
+            for (int s = 0; s < stack; ++s) {
+                const Coord origin = base + Coord(0, 0, 8 * s);
+                const std::uint8_t* d = distances.leaf(s);
+                for (openvdb::Index n = 0; n < 512; ++n) {
+                    const Coord c = origin + openvdb::MaskTree::LeafNodeType::offsetToLocalCoord(n);
+                    int cheb = 1 << 20;
+                    for (const Coord& p : points)
+                        cheb = std::min(cheb, std::max({std::abs(c.x() - p.x()), std::abs(c.y() - p.y()), std::abs(c.z() - p.z())}));
+                    if (!d) {
+                        EXPECT_GT(cheb, reach) << c << " reach " << reach;
+                        continue;
+                    }
+                    EXPECT_EQ(int(d[n]), std::min(cheb, reach + 1)) << c << " reach " << reach;
+                    EXPECT_EQ(cheb <= reach, bool(distances.within(s)[n / 64] >> (n % 64) & 1)) << c << " reach " << reach;
+                    ++checked;
+                }
+                nulls += d == nullptr;
+            }
+        }
+        EXPECT_GT(checked, 512 * 3) << reach;
+        EXPECT_GE(nulls, stack) << reach;  // at least the column far from every feature
+        EXPECT_THROW(distances.column(mask, Coord(0), stack + 1), std::invalid_argument);
+        EXPECT_THROW(distances.column(mask, Coord(0), 0), std::invalid_argument);
+    }
+}
+
+TEST(LeafReach, ColumnRunsStackLeavesOfOneXAndYWithinAColumn) {
+    const std::vector<Coord> origins = {Coord(0, 0, 0),   Coord(0, 0, 8),  Coord(0, 0, 40), Coord(0, 0, 48),
+                                        Coord(0, 0, 96),  Coord(0, 8, 0),  Coord(8, 8, 0),  Coord(8, 8, 16)};
+    // Six leaves per column: z 0..40 is one, 48 starts the next and 96 one more; a new x or y always starts one.
+    EXPECT_EQ(columnRuns(origins, 6), (std::vector<std::size_t>{0, 3, 4, 5, 6, 8}));
+    EXPECT_EQ(columnRuns(origins, 1), (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7, 8}));
+    EXPECT_EQ(columnRuns({}, 6), (std::vector<std::size_t>{0}));
 }
 
 TEST(LeafReach, LeafOriginsNearAreEveryLeafAVoxelWithinReachCanLieIn) {

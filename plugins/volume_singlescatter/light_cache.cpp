@@ -98,10 +98,9 @@ openvdb::FloatGrid::Ptr cacheTopology(const Volume& receiver, int factor) {
     openvdb::MaskTree coarse = coarseVoxels(receiver.grid->tree(), origin, factor);
     coarse.voxelizeActiveTiles();
     using Leaf = openvdb::FloatTree::LeafNodeType;
-    addLeavesNear(cache->tree(), coarse, 1, [](const openvdb::Coord& origin, const std::uint8_t* d) {
+    addLeavesNear(cache->tree(), coarse, 1, [](const openvdb::Coord& origin, const std::uint8_t*, const std::uint64_t* within) {
         auto leaf = std::make_unique<Leaf>(origin, 0.0f, false);
-        for (openvdb::Index n = 0; n < Leaf::SIZE; ++n)
-            if (d[n] <= 1) leaf->setValueOn(n);
+        for (openvdb::Index w = 0; w < Leaf::SIZE / 64; ++w) leaf->getValueMask().template getWord<std::uint64_t>(w) = within[w];
         return leaf;
     });
     return cache;
