@@ -14,7 +14,7 @@
 namespace weft {
 
 LeafDistances::LeafDistances(int reach)
-    : K_(reach), B_(8 + 2 * reach), S_((64 - 2 * reach) / 8), P_(std::bit_width(unsigned(reach + 1))) {
+    : K_(reach), B_(8 + 2 * reach), S_(columnLeaves(reach)), P_(std::bit_width(unsigned(reach + 1))) {
     if (reach < 0 || reach > kMaxLeafReach) throw std::invalid_argument("LeafDistances: reach " + std::to_string(reach) + " outside [0, 16]");
     const int bits = 8 * S_ + 2 * K_;
     inBlock_ = bits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << bits) - 1;

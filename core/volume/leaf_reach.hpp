@@ -28,7 +28,7 @@ public:
     explicit LeafDistances(int reach);  // reach in [0, kMaxLeafReach]
 
     // Leaves a column can stack: 8 voxels each and `reach` on both ends in 64 bits.
-    int columnLeaves() const { return S_; }
+    static int columnLeaves(int reach) { return (64 - 2 * reach) / 8; }
 
     // Distances (reach + 1 where farther) from the active voxels of `mask`
     // (no active tiles: voxelize them first) to the voxels of the `count`
@@ -71,16 +71,15 @@ std::vector<openvdb::Coord> leafOriginsNear(const openvdb::MaskTree& mask, int r
 // first index, and the end closes the list.
 std::vector<std::size_t> columnRuns(const std::vector<openvdb::Coord>& origins, int leaves);
 
-// make(origin, distances) for every leaf with a voxel within `reach` of the
-// mask, in parallel; the leaves it returns (a std::unique_ptr to one of
-// tree's leaves, or null) are then added to `tree`. make(origin, distances,
-// within) also gets the voxels within reach as a value mask's words.
+// make(origin, distances, within) for every leaf with a voxel within
+// `reach` of the mask, in parallel (within: the voxels within reach as the
+// leaf's value-mask words); the leaves it returns (a std::unique_ptr to one
+// of tree's leaves, or null) are then added to `tree`.
 template <class Tree, class Make>
 void addLeavesNear(Tree& tree, const openvdb::MaskTree& mask, int reach, const Make& make) {
     using Leaf = typename Tree::LeafNodeType;
     const std::vector<openvdb::Coord> origins = leafOriginsNear(mask, reach);
-    const int stack = LeafDistances(reach).columnLeaves();
-    const std::vector<std::size_t> runs = columnRuns(origins, stack);
+    const std::vector<std::size_t> runs = columnRuns(origins, LeafDistances::columnLeaves(reach));
     std::vector<std::unique_ptr<Leaf>> leaves(origins.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size() - 1, 4), [&](const tbb::blocked_range<std::size_t>& r) {
         LeafDistances distances(reach);
@@ -88,10 +87,10 @@ void addLeavesNear(Tree& tree, const openvdb::MaskTree& mask, int reach, const M
             const std::size_t first = runs[c], last = runs[c + 1] - 1;
             const openvdb::Coord& base = origins[first];
             distances.column(mask, base, (origins[last].z() - base.z()) / 8 + 1);
-            for (std::size_t i = first; i <= last; ++i)
-                if (const std::uint8_t* d = distances.leaf((origins[i].z() - base.z()) / 8)) {
-                    leaves[i] = make(origins[i], d, distances.within((origins[i].z() - base.z()) / 8));
-                }
+            for (std::size_t i = first; i <= last; ++i) {
+                const int s = (origins[i].z() - base.z()) / 8;
+                if (const std::uint8_t* d = distances.leaf(s)) leaves[i] = make(origins[i], d, distances.within(s));
+            }
         }
     });
     for (auto& leaf : leaves)

@@ -90,7 +90,7 @@ TEST(LeafReach, ColumnsGiveEveryLeafItsChebyshevDistances) {
     for (const Coord& p : points) mask.setValueOn(p);
     for (const int reach : {0, 1, 7, 16}) {
         LeafDistances distances(reach);
-        const int stack = distances.columnLeaves();
+        const int stack = LeafDistances::columnLeaves(reach);
         EXPECT_EQ(stack, (64 - 2 * reach) / 8);
         int checked = 0, nulls = 0;
         for (const Coord& base : {Coord(0, 0, -16), Coord(0, 0, 8), Coord(-8, 0, 24), Coord(8, -8, 0), Coord(-24, 16, -8), Coord(200, 0, 0)}) {
