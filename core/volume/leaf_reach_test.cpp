@@ -29,6 +29,13 @@ openvdb::MaskTree scatteredMask(std::uint64_t seed) {
     return mask;
 }
 
+// The Chebyshev distance from voxel c to the nearest of `points`, by definition.
+int chebyshevTo(const Coord& c, const std::vector<Coord>& points) {
+    int cheb = 1 << 20;
+    for (const Coord& p : points) cheb = std::min(cheb, std::max({std::abs(c.x() - p.x()), std::abs(c.y() - p.y()), std::abs(c.z() - p.z())}));
+    return cheb;
+}
+
 }  // namespace
 
 TEST(LeafReach, GrowingLeafByLeafIsOpenVdbsDilation) {
@@ -64,9 +71,7 @@ TEST(LeafReach, DistancesAreChebyshevDistancesCappedPastTheReach) {
         const std::uint8_t* d = distances.of(mask, origin);
         for (openvdb::Index n = 0; n < 512; ++n) {
             const Coord c = origin + openvdb::MaskTree::LeafNodeType::offsetToLocalCoord(n);
-            int cheb = 1 << 20;
-            for (const Coord& p : points)
-                cheb = std::min(cheb, std::max({std::abs(c.x() - p.x()), std::abs(c.y() - p.y()), std::abs(c.z() - p.z())}));
+            const int cheb = chebyshevTo(c, points);
             if (!d) {
                 EXPECT_GT(cheb, reach) << c;
                 continue;
@@ -100,9 +105,7 @@ TEST(LeafReach, ColumnsGiveEveryLeafItsChebyshevDistances) {
                 const std::uint8_t* d = distances.leaf(s);
                 for (openvdb::Index n = 0; n < 512; ++n) {
                     const Coord c = origin + openvdb::MaskTree::LeafNodeType::offsetToLocalCoord(n);
-                    int cheb = 1 << 20;
-                    for (const Coord& p : points)
-                        cheb = std::min(cheb, std::max({std::abs(c.x() - p.x()), std::abs(c.y() - p.y()), std::abs(c.z() - p.z())}));
+                    const int cheb = chebyshevTo(c, points);
                     if (!d) {
                         EXPECT_GT(cheb, reach) << c << " reach " << reach;
                         continue;
