@@ -146,7 +146,7 @@ OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const Oracl
     addLeavesNear(*distance, mask, K, [&](const Coord& origin, const std::uint8_t* d, const std::uint64_t* within) {
         auto leaf = std::make_unique<RingTree::LeafNodeType>(origin, kFarRing, false);
         std::memcpy(leaf->buffer().data(), d, RingTree::LeafNodeType::SIZE);
-        for (Index w = 0; w < RingTree::LeafNodeType::SIZE / 64; ++w) leaf->getValueMask().template getWord<std::uint64_t>(w) = within[w];
+        setValueMaskWords(*leaf, within);
         return leaf;
     });
     return fieldOf(std::move(distance), K, ctx, cap);

@@ -23,11 +23,6 @@ LeafDistances::LeafDistances(int reach)
     within_.resize(8 * std::size_t(S_)), out_.resize(512 * std::size_t(S_)), found_.resize(std::size_t(S_));
 }
 
-const std::uint8_t* LeafDistances::of(const openvdb::MaskTree& mask, const openvdb::Coord& origin) {
-    column(mask, origin, 1);
-    return leaf(0);
-}
-
 void LeafDistances::column(const openvdb::MaskTree& mask, const openvdb::Coord& origin, int count) {
     if (count < 1 || count > S_) throw std::invalid_argument("LeafDistances: a column of " + std::to_string(count) + " leaves, at most " + std::to_string(S_));
     n_ = count;

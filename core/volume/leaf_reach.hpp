@@ -41,9 +41,6 @@ public:
     const std::uint8_t* leaf(int s) const { return found_[std::size_t(s)] ? out_.data() + 512 * std::size_t(s) : nullptr; }
     const std::uint64_t* within(int s) const { return within_.data() + 8 * std::size_t(s); }
 
-    // One leaf's distances: column(mask, origin, 1), then leaf(0).
-    const std::uint8_t* of(const openvdb::MaskTree& mask, const openvdb::Coord& origin);
-
 private:
     std::uint64_t& row(int x, int y) { return rows_[std::size_t(x) * B_ + y]; }
     bool load(const openvdb::MaskTree& mask, const openvdb::Coord& lo, int depth);
@@ -70,6 +67,12 @@ std::vector<openvdb::Coord> leafOriginsNear(const openvdb::MaskTree& mask, int r
 // of the same x and y whose z span at most `leaves` leaves; each run is its
 // first index, and the end closes the list.
 std::vector<std::size_t> columnRuns(const std::vector<openvdb::Coord>& origins, int leaves);
+
+// Makes `within` (LeafDistances::within) a leaf's value mask.
+template <class Leaf>
+void setValueMaskWords(Leaf& leaf, const std::uint64_t* within) {
+    for (openvdb::Index w = 0; w < Leaf::SIZE / 64; ++w) leaf.getValueMask().template getWord<std::uint64_t>(w) = within[w];
+}
 
 // make(origin, distances, within) for every leaf with a voxel within
 // `reach` of the mask, in parallel (within: the voxels within reach as the

@@ -68,7 +68,8 @@ TEST(LeafReach, DistancesAreChebyshevDistancesCappedPastTheReach) {
     LeafDistances distances(reach);
     int checked = 0;
     for (const Coord& origin : leafOriginsNear(mask, reach)) {
-        const std::uint8_t* d = distances.of(mask, origin);
+        distances.column(mask, origin, 1);
+        const std::uint8_t* d = distances.leaf(0);
         for (openvdb::Index n = 0; n < 512; ++n) {
             const Coord c = origin + openvdb::MaskTree::LeafNodeType::offsetToLocalCoord(n);
             const int cheb = chebyshevTo(c, points);

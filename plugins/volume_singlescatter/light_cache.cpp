@@ -100,7 +100,7 @@ openvdb::FloatGrid::Ptr cacheTopology(const Volume& receiver, int factor) {
     using Leaf = openvdb::FloatTree::LeafNodeType;
     addLeavesNear(cache->tree(), coarse, 1, [](const openvdb::Coord& origin, const std::uint8_t*, const std::uint64_t* within) {
         auto leaf = std::make_unique<Leaf>(origin, 0.0f, false);
-        for (openvdb::Index w = 0; w < Leaf::SIZE / 64; ++w) leaf->getValueMask().template getWord<std::uint64_t>(w) = within[w];
+        setValueMaskWords(*leaf, within);
         return leaf;
     });
     return cache;
