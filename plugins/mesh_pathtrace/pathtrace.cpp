@@ -139,10 +139,12 @@ public:
 
     Image render(const Scene& scene, RenderContext& ctx) override {
         const RenderSettings& s = ctx.settings;
-        // Built before the pixel loop; a volume-only scene traces an empty BVH.
-        const MeshAccel noMeshes({});
+        // Built before the pixel loop; a volume-only scene traces an empty
+        // BVH, made only then (an Embree device and commit cost ~2 ms).
+        std::optional<MeshAccel> noMeshes;
+        if (scene.meshes.empty()) noMeshes.emplace(std::vector<TriangleMesh>{});
         const Emitters noEmitters;
-        const MeshAccel& accel = scene.meshes.empty() ? noMeshes : scene.accel();
+        const MeshAccel& accel = noMeshes ? *noMeshes : scene.accel();
         emitters_ = scene.meshes.empty() ? &noEmitters : &scene.emitters();
         eps_ = rayEpsilon(scene);
         const Medium medium(scene.volumes);
