@@ -11,13 +11,13 @@
 #include <unistd.h>
 #endif
 
+#include "core/base/huge_pages.hpp"
+
 namespace weft {
 
 namespace {
 
-constexpr std::size_t kHugePage = std::size_t(2) << 20;
-
-std::size_t roundedToHugePages(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+std::size_t roundedToHugePages(std::size_t bytes) { return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes; }
 
 }  // namespace
 
@@ -108,10 +108,9 @@ std::size_t nextColour() {
 
 }  // namespace
 
-// A kept mapping of about the size, or an anonymous mapping trimmed to a
-// 2 MiB boundary (huge pages need the alignment), then the hint; a refused
-// hint leaves small pages. The buffer starts a few cache lines past the
-// boundary (nextColour).
+// A kept mapping of about the size, or a fresh one on huge pages
+// (huge_pages.hpp; where the kernel declines, small pages). The buffer
+// starts a few cache lines past the 2 MiB boundary (nextColour).
 void* allocateLargePages(std::size_t bytes) {
     const std::size_t colour = nextColour(), length = roundedToHugePages(colour + bytes);
     if (const std::uintptr_t kept = keptMappings().take(length)) {
@@ -119,20 +118,14 @@ void* allocateLargePages(std::size_t bytes) {
         return reinterpret_cast<void*>(kept + colour);
     }
     lastReused = false;
-    void* raw = mmap(nullptr, length + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (raw == MAP_FAILED) throw std::bad_alloc();
-    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(raw);
-    const std::uintptr_t aligned = (start + kHugePage - 1) & ~std::uintptr_t(kHugePage - 1);
-    const std::size_t head = aligned - start, tail = kHugePage - head;
-    if (head) munmap(raw, head);
-    if (tail) munmap(reinterpret_cast<void*>(aligned + length), tail);
-    madvise(reinterpret_cast<void*>(aligned), length, MADV_HUGEPAGE);
-    return reinterpret_cast<void*>(aligned + colour);
+    void* aligned = mapOnHugePages(length, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS);
+    if (aligned == MAP_FAILED) throw std::bad_alloc();
+    return static_cast<char*>(aligned) + colour;
 }
 
 void releaseLargePages(void* p, std::size_t bytes) noexcept {
     if (!p) return;
-    const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(p), start = at & ~std::uintptr_t(kHugePage - 1);
+    const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(p), start = at & ~std::uintptr_t(kHugePageBytes - 1);
     keptMappings().keep(start, roundedToHugePages(at - start + bytes));
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/frames.hpp"
+#include "core/base/huge_pages.hpp"
 #include "core/base/physical_memory.hpp"
 #include "core/base/progress.hpp"
 #include "core/scene/scene.hpp"
@@ -108,6 +109,7 @@ void writeStats(const RenderRequest& r, const RenderOutcome& out, int threads) {
     j["counters"] = nlohmann::ordered_json::object();
     for (const auto& [k, v] : out.counters) j["counters"][k] = v;
     for (const auto& [k, v] : out.timingsMs) j["timings_ms"][k] = v;
+    j["heap_huge_page_mappings"] = heapMappingsOnHugePages();  // the process's so far (core/base/huge_pages.hpp)
     writeTextAtomically(r.stats, j.dump(2) + "\n", "stats");
 }
 
