@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -108,14 +111,65 @@ const Affine3& ycxczToRgb() {
     return a;
 }
 
-float labF(float t) {
-    constexpr float d = 6.0f / 29.0f;
-    return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0f / 29.0f;
+// Float stand-ins for cbrt and pow, inline so that the per-pixel loops
+// vectorise (the library's are a call per pixel, most of a comparison).
+// The cube root: fdlibm's first guess from the exponent bits, then two
+// Halley steps (cubic convergence: a 3% guess ends within float rounding).
+inline float cubeRoot(float x) {  // x > 0
+    const auto halley = [x](float y) {
+        const float y3 = y * y * y;
+        return y * (y3 + 2 * x) / (2 * y3 + x);
+    };
+    return halley(halley(std::bit_cast<float>(std::bit_cast<std::uint32_t>(x) / 3 + 709958130u)));
 }
 
-// CIELAB with the Hunt adjustment (chroma scaled by L/100): dark colours differ less.
-Lab huntLab(float r, float g, float b) {
-    const std::array<float, 3> x = rgbToRelXyz()(r, g, b);
+// log2 of a normal x > 0: the exponent, and ln m of the mantissa m in
+// [sqrt 1/2, sqrt 2) as 2 atanh((m - 1) / (m + 1)), whose series' first five
+// terms leave an error below 1e-9.
+inline float log2Of(float x) {
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(x);
+    float m = std::bit_cast<float>((bits & 0x007fffffu) | 0x3f800000u);
+    const bool high = m > 1.41421356f;
+    m = high ? 0.5f * m : m;
+    const float e = float(int(bits >> 23) - 127) + (high ? 1.0f : 0.0f);
+    const float s = (m - 1) / (m + 1), s2 = s * s;
+    const float ln = 2 * s * (1 + s2 * (1.0f / 3 + s2 * (1.0f / 5 + s2 * (1.0f / 7 + s2 * (1.0f / 9)))));
+    return e + ln * 1.44269504f;
+}
+
+// 2^t for t in [-126, 127]: 2^round(t) from the exponent bits, times the
+// Taylor series of e^(f ln 2), |f| <= 1/2, to its eighth term (error below 1e-8).
+inline float exp2Of(float t) {
+    constexpr float kRound = 12582912.0f;  // 1.5 2^23: adding it rounds to a whole number (|t| < 2^22)
+    const float n = (t + kRound) - kRound, x = (t - n) * 0.693147181f;
+    const float p = 1 + x * (1 + x * (0.5f + x * (1.0f / 6 + x * (1.0f / 24 + x * (1.0f / 120 + x * (1.0f / 720 + x * (1.0f / 5040)))))));
+    return p * std::bit_cast<float>(std::uint32_t(int(n) + 127) << 23);
+}
+
+// Minimum, maximum and clamp by value: std::min and std::clamp return
+// references, whose selects GCC does not turn into vector blends.
+inline float smaller(float a, float b) { return b < a ? b : a; }
+inline float larger(float a, float b) { return a < b ? b : a; }
+inline float clamped(float v, float lo, float hi) { return smaller(larger(v, lo), hi); }
+
+// x^y for x >= 0 and y >= 0 (0^0 = 1, as std::pow); x below the smallest
+// normal float counts as 0.
+inline float powOf(float x, float y) {
+    constexpr float kMin = std::numeric_limits<float>::min();
+    const float p = exp2Of(y * log2Of(larger(x, kMin)));  // selects, not branches: the loops vectorise
+    return x >= kMin ? p : y == 0 ? 1.0f : 0.0f;
+}
+
+float labF(float t) {
+    constexpr float d = 6.0f / 29.0f;
+    const float root = cubeRoot(larger(t, d * d * d)), line = t / (3 * d * d) + 4.0f / 29.0f;  // both, then a select
+    return t > d * d * d ? root : line;
+}
+
+// CIELAB with the Hunt adjustment (chroma scaled by L/100): dark colours
+// differ less. Inline, for the loop that converts whole rows (labRow).
+inline Lab huntLab(const Affine3& toRelXyz, float r, float g, float b) {
+    const std::array<float, 3> x = toRelXyz(r, g, b);
     const float fx = labF(x[0]), fy = labF(x[1]), fz = labF(x[2]);
     const float L = 116 * fy - 16;
     return {L, 0.01f * L * 500 * (fx - fy), 0.01f * L * 200 * (fy - fz)};
@@ -123,24 +177,26 @@ Lab huntLab(float r, float g, float b) {
 
 // HyAB: city-block in lightness, Euclidean in chroma (large differences).
 // Lab values of colours in [0, 1] are bounded (|a|, |b| < 500): the plain root cannot overflow, and is faster than hypot.
-double hyab(const Lab& a, const Lab& b) {
-    const double da = double(a[1]) - b[1], db = double(a[2]) - b[2];
-    return std::abs(double(a[0]) - b[0]) + std::sqrt(da * da + db * db);
+float hyab(float L1, float a1, float b1, float L2, float a2, float b2) {
+    const float da = a1 - a2, db = b1 - b2;
+    return std::abs(L1 - L2) + std::sqrt(da * da + db * db);
 }
 
 // The largest colour error, green vs blue, after the power q_c.
-double maxColorError() {
-    static const double cmax = std::pow(hyab(huntLab(0, 1, 0), huntLab(0, 0, 1)), kQc);
+float maxColorError() {
+    static const float cmax = [] {
+        const Lab g = huntLab(rgbToRelXyz(), 0, 1, 0), b = huntLab(rgbToRelXyz(), 0, 0, 1);
+        return powOf(hyab(g[0], g[1], g[2], b[0], b[1], b[2]), float(kQc));
+    }();
     return cmax;
 }
 
 // Compresses the powered HyAB distance into [0, 1]: the lower p_c of the
 // range maps linearly to [0, p_t], the rest to [p_t, 1].
-double remapColorError(double distance) {
-    // In float, as the error map is kept: a double pow per pixel was most of the comparison.
-    const double e = std::pow(static_cast<float>(distance), static_cast<float>(kQc)), cmax = maxColorError();
-    const double r = e < kPc * cmax ? kPt / (kPc * cmax) * e : kPt + (e - kPc * cmax) / (cmax - kPc * cmax) * (1 - kPt);
-    return std::clamp(r, 0.0, 1.0);
+inline float remapColorError(float distance, float cmax) {
+    const float e = powOf(distance, float(kQc)), knee = float(kPc) * cmax;
+    const float r = e < knee ? float(kPt) / knee * e : float(kPt) + (e - knee) / (cmax - knee) * float(1 - kPt);
+    return clamped(r, 0.0f, 1.0f);
 }
 
 // out[x] += k * src[x] over a run of n pixels: the convolutions' inner
@@ -274,12 +330,27 @@ DisplayPlanes toYcxcz(const Image& img) {
     return out;
 }
 
-// A CSF-filtered YCxCz pixel as Hunt-adjusted CIELAB.
-Lab filteredLab(const std::array<Plane, 3>& p, std::size_t i) {
-    std::array<float, 3> rgb = ycxczToRgb()(p[0].v[i], p[1].v[i], p[2].v[i]);
-    for (float& c : rgb) c = std::clamp(c, 0.0f, 1.0f);
-    return huntLab(rgb[0], rgb[1], rgb[2]);
+// Hunt-adjusted CIELAB planes of n CSF-filtered YCxCz pixels. Both images'
+// colours pass through this one loop, so the error is symmetric to the bit.
+[[gnu::target_clones("avx2", "default")]] void labRow(const float* __restrict y, const float* __restrict cx,
+                                                      const float* __restrict cz, std::size_t n, float* __restrict L,
+                                                      float* __restrict a, float* __restrict b) {
+    const Affine3 toRgb = ycxczToRgb(), toXyz = rgbToRelXyz();
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::array<float, 3> rgb = toRgb(y[i], cx[i], cz[i]);
+        const Lab lab = huntLab(toXyz, clamped(rgb[0], 0, 1), clamped(rgb[1], 0, 1), clamped(rgb[2], 0, 1));
+        L[i] = lab[0], a[i] = lab[1], b[i] = lab[2];
+    }
 }
+
+// Three planes of one image's colour as CIELAB.
+struct LabPlanes {
+    std::array<FreshBuffer<float>, 3> c;
+    explicit LabPlanes(std::size_t n) : c{FreshBuffer<float>(n), FreshBuffer<float>(n), FreshBuffer<float>(n)} {}
+    void fillRow(const std::array<Plane, 3>& filtered, std::size_t begin, std::size_t n) {
+        labRow(&filtered[0].v[begin], &filtered[1].v[begin], &filtered[2].v[begin], n, &c[0][begin], &c[1][begin], &c[2][begin]);
+    }
+};
 
 // Scales positive taps to sum 1 and negative taps to sum -1, so a response
 // lies in [-1, 1] and a flat region gives 0.
@@ -345,11 +416,27 @@ FlipSide prepareSide(const Image& img, double ppd) {
             featureMagnitude(c.achromatic, gRows, k.point, k.gauss)};
 }
 
+// The FLIP error of n pixels from both images' CIELAB planes and feature
+// magnitudes: dE = dEc^(1 - dEf), dEc the remapped HyAB distance, dEf =
+// (max(|edge difference|, |point difference|) / sqrt 2)^q_f.
+struct ErrorRowInputs {
+    const float *L[2], *a[2], *b[2], *edges[2], *points[2];
+};
+
+[[gnu::target_clones("avx2", "default")]] void errorRow(const ErrorRowInputs& in, std::size_t n, float cmax, float* out) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const float ec = remapColorError(hyab(in.L[0][i], in.a[0][i], in.b[0][i], in.L[1][i], in.a[1][i], in.b[1][i]), cmax);
+        const float d = larger(std::abs(in.edges[0][i] - in.edges[1][i]), std::abs(in.points[0][i] - in.points[1][i])) * 0.707106781f;
+        const float ef = std::sqrt(smaller(d, 1.0f));  // q_f = 1/2
+        out[i] = powOf(ec, 1 - ef);
+    }
+}
+
 }  // namespace
 
 // The reference keeps its colour as CIELAB, converted once.
 struct FlipReference::Side {
-    std::vector<Lab> lab;
+    LabPlanes lab;
     Plane edges, points;
 };
 
@@ -357,33 +444,36 @@ FlipReference::FlipReference(const Image& reference, double pixelsPerDegree)
     : width_(reference.width()), height_(reference.height()), ppd_(pixelsPerDegree) {
     checkInputs(reference, pixelsPerDegree, "reference");
     FlipSide s = prepareSide(reference, pixelsPerDegree);
-    std::vector<Lab> lab(s.edges.v.size());
-    forPixels(lab.size(), [&](std::size_t i) { lab[i] = filteredLab(s.filtered, i); });
+    LabPlanes lab(s.edges.v.size());
+    tbb::parallel_for(0, height_, [&](int y) { lab.fillRow(s.filtered, std::size_t(y) * width_, std::size_t(width_)); });
     side_ = std::make_unique<const Side>(Side{std::move(lab), std::move(s.edges), std::move(s.points)});
 }
 
 FlipReference::~FlipReference() = default;
 
-// dE = dEc^(1 - dEf) per pixel, dEc the remapped HyAB distance, dEf =
-// (max(|edge difference|, |point difference|) / sqrt 2)^q_f, into map when
-// one is given. The mean sums each row, then the rows in order: the same on
-// any thread count.
+// The error per pixel, into map when one is given. The mean sums each row,
+// then the rows in order: the same on any thread count.
 double FlipReference::compareInto(const Image& test, float* map) const {
     if (test.width() != width_ || test.height() != height_)
         throw Error("FLIP: images differ in size: " + sizeText(test) + " vs " + std::to_string(width_) + "x" + std::to_string(height_));
     checkInputs(test, ppd_, "test");
     const FlipSide t = prepareSide(test, ppd_);
     const Side& r = *side_;
+    const std::size_t n = t.edges.v.size(), w = std::size_t(width_);
+    LabPlanes lab(n);
+    FreshBuffer<float> errors(map ? 0 : n);
+    float* out = map ? map : errors.data();
+    const float cmax = maxColorError();
     std::vector<double> rowSums(height_, 0.0);
     tbb::parallel_for(0, height_, [&](int y) {
-        for (std::size_t i = std::size_t(y) * width_, end = i + width_; i < end; ++i) {
-            const double ec = static_cast<float>(remapColorError(hyab(filteredLab(t.filtered, i), r.lab[i])));
-            const double d = std::max(std::abs(t.edges.v[i] - r.edges.v[i]), std::abs(t.points.v[i] - r.points.v[i])) / std::numbers::sqrt2;
-            const double ef = static_cast<float>(std::sqrt(std::min(d, 1.0)));  // q_f = 1/2
-            const float e = std::pow(static_cast<float>(ec), static_cast<float>(1.0 - ef));  // float, as the map is
-            if (map) map[i] = e;
-            rowSums[y] += e;
-        }
+        const std::size_t i = std::size_t(y) * w;
+        lab.fillRow(t.filtered, i, w);
+        const ErrorRowInputs in{{&lab.c[0][i], &r.lab.c[0][i]}, {&lab.c[1][i], &r.lab.c[1][i]}, {&lab.c[2][i], &r.lab.c[2][i]},
+                                {&t.edges.v[i], &r.edges.v[i]}, {&t.points.v[i], &r.points.v[i]}};
+        errorRow(in, w, cmax, out + i);
+        double sum = 0;
+        for (std::size_t k = 0; k < w; ++k) sum += out[i + k];
+        rowSums[y] = sum;
     });
     double total = 0;
     for (double s : rowSums) total += s;

@@ -1,6 +1,7 @@
 // LDR-FLIP: bounds, zero for equal images, growth with noise, locality, errors.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -124,6 +125,43 @@ TEST(Flip, BlackVersusWhiteIsNearOne) {
 
 TEST(Flip, GreenVersusBlueIsTheMaximum) {
     EXPECT_NEAR(flipError(filled(8, 8, 0, 1, 0), filled(8, 8, 0, 0, 1)).mean, 1.0, 1e-5);
+}
+
+// The colour error of flat images (no features, and a normalised CSF
+// leaves a flat colour as it is) by its definition, in double precision
+// with the library's cbrt and pow: Hunt-adjusted CIELAB, HyAB, the power
+// q_c and the remap (the paper's constants). FLIP's float loops (their own
+// cube root and power) must agree over the colour cube, dark to saturated.
+double colourErrorByDefinition(const std::array<double, 3>& p, const std::array<double, 3>& q) {
+    const double m[3][3] = {{0.4124564, 0.3575761, 0.1804375}, {0.2126729, 0.7151522, 0.0721750}, {0.0193339, 0.1191920, 0.9503041}};
+    const auto lab = [&](const std::array<double, 3>& rgb) {
+        double f[3];
+        for (int i = 0; i < 3; ++i) {
+            const double white = m[i][0] + m[i][1] + m[i][2], t = (m[i][0] * rgb[0] + m[i][1] * rgb[1] + m[i][2] * rgb[2]) / white;
+            const double d = 6.0 / 29;
+            f[i] = t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0 / 29;
+        }
+        const double L = 116 * f[1] - 16;
+        return std::array<double, 3>{L, 0.01 * L * 500 * (f[0] - f[1]), 0.01 * L * 200 * (f[1] - f[2])};
+    };
+    const auto hyab = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+        const std::array<double, 3> x = lab(a), y = lab(b);
+        return std::abs(x[0] - y[0]) + std::hypot(x[1] - y[1], x[2] - y[2]);
+    };
+    const double cmax = std::pow(hyab({0, 1, 0}, {0, 0, 1}), 0.7), e = std::pow(hyab(p, q), 0.7);
+    return e < 0.4 * cmax ? 0.95 / (0.4 * cmax) * e : 0.95 + (e - 0.4 * cmax) / (0.6 * cmax) * 0.05;
+}
+
+TEST(Flip, FlatColoursGiveTheColourErrorOfTheDefinition) {
+    Rng rng(2026);
+    for (int k = 0; k < 200; ++k) {
+        std::array<double, 3> p, q;
+        for (int c = 0; c < 3; ++c) p[c] = rng.uniform(), q[c] = k % 4 == 0 ? p[c] * 0.9 : rng.uniform();  // near and far pairs
+        if (k % 10 == 1) p = {0.002, 0.001, 0.003};                                                        // below the cube root's knee
+        const double expected = colourErrorByDefinition(p, q);
+        const double got = flipError(filled(4, 4, float(p[0]), float(p[1]), float(p[2])), filled(4, 4, float(q[0]), float(q[1]), float(q[2]))).mean;
+        EXPECT_NEAR(got, expected, 2e-4 * (1 + expected)) << k;  // float colour pipeline: 1e-4 at most here
+    }
 }
 
 // LDR-FLIP treats both images alike (the feature term compares magnitudes
