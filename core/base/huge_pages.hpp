@@ -9,7 +9,10 @@
 // figures come from (a 14 MB volume: 3,500 faults, 36 ms); on a 2 MiB
 // boundary with the kernel asked for huge pages, one fault serves 2 MiB.
 // The kernel honours the request when transparent huge pages are `always`
-// or `madvise` and otherwise maps small pages, as before.
+// or `madvise` and otherwise maps small pages, as before. Where it must
+// first compact memory to find a huge page (THP defrag `madvise`, on a
+// fragmented machine) a first touch may wait; WEFT_HEAP_HUGE_PAGES=0 turns
+// the heap's part off.
 #include <cstddef>
 #include <cstdint>
 
