@@ -10,7 +10,11 @@
 
 #include <tbb/global_control.h>
 
+#include <chrono>
 #include <cstdlib>
+#include <future>
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -124,16 +128,43 @@ public:
         r.seed = seed;
         r.threads = threads;
         r.frame = frame;
-        RenderOutcome out;
-        {
-            py::gil_scoped_release release;
-            validateRequest(r);
-            tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
-            out = renderLoadedScene(r, loaded(r));
-        }
+        const RenderOutcome out = renderInterruptibly(r);
         return {std::move(out.image), std::move(out.counters), std::move(out.timingsMs), std::move(out.metadata)};
     }
     const std::string& path() const { return file_->path(); }
+
+    // The render runs on a thread of its own while this one, holding the GIL
+    // a moment every 50 ms, lets Python run its signal handlers: Ctrl-C (or
+    // any handler that raises) cancels the render at its next row and the
+    // exception reaches the caller. Called with the GIL held.
+    RenderOutcome renderInterruptibly(RenderRequest r) const {
+        CancelFlag cancel;
+        r.cancel = &cancel;
+        std::future<RenderOutcome> result = std::async(std::launch::async, [&] {
+            validateRequest(r);
+            tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
+            return renderLoadedScene(r, loaded(r));
+        });
+        bool interrupted = false;
+        for (;;) {
+            std::future_status status;
+            {
+                py::gil_scoped_release release;
+                status = result.wait_for(std::chrono::milliseconds(50));
+            }
+            if (status == std::future_status::ready) break;
+            if (!interrupted && PyErr_CheckSignals() != 0) interrupted = true, cancel.requested = true;
+        }
+        if (interrupted) {
+            try {
+                result.get();  // Cancelled, or what failed first
+            } catch (const Cancelled&) {
+            } catch (...) {
+            }
+            throw py::error_already_set();  // the handler's exception: KeyboardInterrupt for Ctrl-C
+        }
+        return result.get();
+    }
 
 private:
     RenderRequest request() const {
@@ -172,12 +203,44 @@ void absolutize(py::dict scene, const fs::path& base) {
     }
 }
 
+// A float that is NaN or infinite, named by where it sits ("scene['volumes'][0]['scale']"):
+// json.dumps would write it as NaN, which no JSON reader takes.
+void requireFiniteNumbers(const py::handle& value, const std::string& where) {
+    if (py::isinstance<py::float_>(value)) {
+        const double v = value.cast<double>();
+        if (!std::isfinite(v)) throw Error(where + " is " + py::str(value).cast<std::string>() + "; scene values must be finite numbers");
+    } else if (py::isinstance<py::dict>(value)) {
+        for (const auto& [k, v] : py::reinterpret_borrow<py::dict>(value))
+            requireFiniteNumbers(v, where + "[" + py::repr(k).cast<std::string>() + "]");
+    } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+        std::size_t i = 0;
+        for (const py::handle item : value) requireFiniteNumbers(item, where + "[" + std::to_string(i++) + "]");
+    }
+}
+
+// Errors about a dict scene name "the scene dict", not the private file it was written to.
+std::string inDictWords(std::string message, const std::string& path) {
+    for (std::size_t at; (at = message.find(path)) != std::string::npos;) {
+        std::size_t end = at + path.size();
+        while (end < message.size() && (message[end] == ':' || std::isdigit(static_cast<unsigned char>(message[end])))) ++end;
+        if (end < message.size() && message[end] == ' ') ++end;
+        message.replace(at, end - at, "the scene dict: ");
+    }
+    return message;
+}
+
 std::shared_ptr<PyScene> loadScenePy(const py::object& source, const std::string& grid, std::optional<std::string> baseDir) {
     if (py::isinstance<py::dict>(source)) {
+        requireFiniteNumbers(source, "scene");
         py::dict copy = py::module_::import("copy").attr("deepcopy")(source);
         absolutize(copy, fs::absolute(baseDir.value_or(fs::current_path().string())));
         const std::string text = py::module_::import("json").attr("dumps")(copy).cast<std::string>();
-        return std::make_shared<PyScene>(SceneFile::fromJson(text), grid);
+        const std::shared_ptr<SceneFile> file = SceneFile::fromJson(text);
+        try {
+            return std::make_shared<PyScene>(file, grid);
+        } catch (const Error& e) {
+            throw Error(inDictWords(e.what(), file->path()));
+        }
     }
     return std::make_shared<PyScene>(std::make_shared<SceneFile>(py::str(source).cast<std::string>()), grid);
 }

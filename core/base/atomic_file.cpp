@@ -5,7 +5,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <fcntl.h>
+#include <limits.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -14,6 +17,7 @@
 #include <cstring>
 
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -51,15 +55,25 @@ extern "C" void removeTempsAndReraise(int sig) {
     raise(sig);
 }
 
-// ".<stem>.weft-tmp-<pid><ext>": the pid of the process that wrote it.
-std::string tempName(const fs::path& p, long pid) {
-    return "." + p.stem().string() + ".weft-tmp-" + std::to_string(pid) + p.extension().string();
+constexpr std::size_t kNameMax = NAME_MAX, kPidDigits = 10;
+
+// ".<stem>.weft-tmp-": the stem cut so that the whole temporary name, with
+// any pid and the extension, stays within NAME_MAX bytes (a legal 254-byte
+// output name must not fail for its temporary's sake).
+std::string tempPrefix(const fs::path& p) {
+    const std::string stem = p.stem().string(), ext = p.extension().string();
+    const std::size_t fixed = std::strlen("..weft-tmp-") + kPidDigits + ext.size();
+    const std::size_t keep = fixed < kNameMax ? std::min(stem.size(), kNameMax - fixed) : 0;
+    return "." + stem.substr(0, keep) + ".weft-tmp-";
 }
+
+// "<prefix><pid><ext>": the pid of the process that wrote it.
+std::string tempName(const fs::path& p, long pid) { return tempPrefix(p) + std::to_string(pid) + p.extension().string(); }
 
 // Removes this output's temporary files whose writer no longer runs.
 void removeStaleTemps(const fs::path& p) {
     const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    const std::string prefix = "." + p.stem().string() + ".weft-tmp-", ext = p.extension().string();
+    const std::string prefix = tempPrefix(p), ext = p.extension().string();
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
         const std::string name = e.path().filename().string();
@@ -69,6 +83,35 @@ void removeStaleTemps(const fs::path& p) {
         const long pid = std::stol(digits);
         if (pid != getpid() && kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(e.path(), ec);
     }
+}
+
+// A FIFO or a character device (a terminal, /dev/stdout, /dev/null): text is
+// written into it, as cp would, never replaced by a regular file.
+bool isStreamTarget(const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode));
+}
+
+void writeToStream(const std::string& path, const std::string& text, const std::string& what) {
+    // Non-blocking open: a FIFO nobody reads fails at once instead of hanging.
+    const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        const int err = errno;
+        throw Error(what + " '" + path + "': " + (err == ENXIO ? "a FIFO that nobody reads" : std::strerror(err)));
+    }
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    std::size_t done = 0;
+    while (done < text.size()) {
+        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int err = errno;
+            ::close(fd);
+            throw Error(what + " '" + path + "': write failed: " + std::strerror(err));
+        }
+        done += std::size_t(n);
+    }
+    ::close(fd);
 }
 
 }  // namespace
@@ -82,6 +125,7 @@ void removeTemporaryOutputsOnInterrupt() {
 }
 
 AtomicOutput::AtomicOutput(std::string finalPath) : final_(std::move(finalPath)) {
+    checkOutputTarget(final_, "output", OutputKind::File);
     const fs::path p(final_);
     removeStaleTemps(p);
     // The extension stays last so image writers pick the right format.
@@ -98,6 +142,7 @@ void AtomicOutput::commit() {
     // Fault-injection hook for the kill tests: hold the finished temporary
     // file this long before the rename, so a kill lands between the two.
     if (const char* ms = std::getenv("WEFT_TEST_PAUSE_BEFORE_RENAME_MS")) usleep(useconds_t(std::clamp(std::atoi(ms), 0, 60000)) * 1000);
+    refuseInputAsOutput(final_, "output");  // an input read after the output was opened
     std::error_code ec;
     fs::rename(temp_, final_, ec);
     if (ec) throw Error("cannot write '" + final_ + "': " + ec.message());
@@ -105,21 +150,38 @@ void AtomicOutput::commit() {
 }
 
 void writeTextAtomically(const std::string& path, const std::string& text, const std::string& what) {
+    if (isStreamTarget(path)) return writeToStream(path, text, what);
     AtomicOutput file(path);
     std::ofstream os(file.tempPath(), std::ios::binary);
     os << text;
     os.close();
-    if (!os) throw Error(what + " '" + path + "': write failed");
+    if (!os) throw Error(what + " '" + path + "': write failed: " + std::strerror(errno));
     file.commit();
 }
 
-void checkOutputPath(const std::string& path, const std::string& what) {
+void checkOutputPath(const std::string& path, const std::string& what, OutputKind kind) {
     if (path.empty()) throw Error(what + ": no output path given");
+    if (kind == OutputKind::Text && isStreamTarget(path)) return;  // written into, in whatever folder
     const fs::path p(path);
     const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    if (!fs::is_directory(dir)) throw Error(what + " '" + path + "': folder '" + dir.string() + "' does not exist");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw Error(what + " '" + path + "': folder '" + dir.string() + "' does not exist");
     if (access(dir.c_str(), W_OK) != 0) throw Error(what + " '" + path + "': folder '" + dir.string() + "' is not writable");
-    if (fs::is_directory(p)) throw Error(what + " '" + path + "' is a folder");
+    checkOutputTarget(path, what, kind);
+    if (fs::is_directory(p, ec)) throw Error(what + " '" + path + "' is a folder");
+}
+
+void checkOutputTarget(const std::string& path, const std::string& what, OutputKind kind) {
+    const std::string name = fs::path(path).filename().string();
+    if (name.size() > kNameMax)
+        throw Error(what + " '" + path + "': its file name is " + std::to_string(name.size()) + " bytes, above the " +
+                    std::to_string(kNameMax) + " a file system allows");
+    if (path.size() >= PATH_MAX) throw Error(what + " '" + path.substr(0, 64) + "...': the path is longer than the system allows");
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode) && !(kind == OutputKind::Text && isStreamTarget(path)))
+        throw Error(what + " '" + path + "' is a device, FIFO or socket; give a regular file (text outputs such as --stats "
+                    "may go to a FIFO or a terminal)");
+    refuseInputAsOutput(path, what);
 }
 
 }  // namespace weft

@@ -31,11 +31,23 @@ private:
 void removeTemporaryOutputsOnInterrupt();
 
 // Writes `text` to `path` through an AtomicOutput; a failed write throws
-// "<what> '<path>': write failed" and leaves no file.
+// "<what> '<path>': write failed" and leaves no file. An existing FIFO or
+// character device is written into instead.
 void writeTextAtomically(const std::string& path, const std::string& text, const std::string& what);
 
+// What an output is: a file (an image, a volume: always replaced whole
+// through a temporary) or text (statistics, tables), which may also go into
+// an existing FIFO or character device such as /dev/stdout.
+enum class OutputKind { File, Text };
+
 // Fails early (before a long render) when the output cannot be written:
-// missing folder, or an extension no image writer handles.
-void checkOutputPath(const std::string& path, const std::string& what);
+// missing folder, a folder of that name, then checkOutputTarget.
+void checkOutputPath(const std::string& path, const std::string& what, OutputKind kind = OutputKind::File);
+
+// Fails when the output would destroy something: it names an input of this
+// job (by identity, core/base/input_file.hpp), or a device, FIFO or socket
+// (text may go into a FIFO or character device); or when its file name is
+// longer than a file system allows.
+void checkOutputTarget(const std::string& path, const std::string& what, OutputKind kind);
 
 }  // namespace weft

@@ -112,6 +112,7 @@ std::pair<double, std::string> convert(const std::string& owner, const ParamSpec
             double v = 0;
             if (!parseDouble(text, v) || !std::isfinite(v)) badValue(owner, spec, text, "not a number");
             if (spec.type == ParamType::Int && v != std::floor(v)) badValue(owner, spec, text, "not an integer");
+            if (spec.type == ParamType::Int && integerOutOfRange(text, spec)) badValue(owner, spec, text, "out of range");
             if (v < spec.min || v > spec.max) badValue(owner, spec, text, "out of range");
             return {v, spec.type == ParamType::Int ? std::to_string(static_cast<long long>(v)) : formatNumber(v)};
         }
@@ -120,6 +121,18 @@ std::pair<double, std::string> convert(const std::string& owner, const ParamSpec
 }
 
 }  // namespace
+
+bool integerOutOfRange(const std::string& text, const ParamSpec& spec) {
+    long long v = 0;
+    const char* end = text.data() + text.size();
+    const auto res = std::from_chars(text.data(), end, v);
+    if (res.ptr != end || text.empty()) return false;  // not plain digits: the double path decides
+    if (res.ec == std::errc::result_out_of_range) return true;
+    constexpr double kInt64 = 9.2e18;  // below 2^63: such bounds convert exactly to long long
+    const bool belowMin = std::abs(spec.min) < kInt64 ? v < static_cast<long long>(spec.min) : double(v) < spec.min;
+    const bool aboveMax = std::abs(spec.max) < kInt64 ? v > static_cast<long long>(spec.max) : double(v) > spec.max;
+    return belowMin || aboveMax;
+}
 
 ParamTable::ParamTable(std::string owner, std::vector<ParamSpec> specs)
     : owner_(std::move(owner)), specs_(std::move(specs)) {

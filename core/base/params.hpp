@@ -88,4 +88,9 @@ private:
 // Canonical shortest round-trip text of a double.
 std::string formatNumber(double v);
 
+// Whether text, written as plain digits, lies outside spec's range, compared
+// exactly: through a double, 2^53 + 1 read as 2^53 and passed a range ending
+// there. False for any other text (a double's check decides).
+bool integerOutOfRange(const std::string& text, const ParamSpec& spec);
+
 }  // namespace weft

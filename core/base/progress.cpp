@@ -5,8 +5,8 @@
 
 namespace weft {
 
-Progress::Progress(std::string label, std::int64_t total, bool enabled)
-    : label_(std::move(label)), total_(total > 0 ? total : 1), enabled_(enabled),
+Progress::Progress(std::string label, std::int64_t total, bool enabled, const CancelFlag* cancel)
+    : label_(std::move(label)), total_(total > 0 ? total : 1), enabled_(enabled), cancel_(cancel),
       start_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() { finish(); }
@@ -14,6 +14,7 @@ Progress::~Progress() { finish(); }
 bool Progress::terminalAttached() { return isatty(STDERR_FILENO) == 1; }
 
 void Progress::advance(std::int64_t n) {
+    throwIfCancelled(cancel_);
     const std::int64_t done = done_.fetch_add(n) + n;
     if (!enabled_) return;
     const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/base/cancel.hpp"
 #include "core/base/counters.hpp"
 
 namespace weft {
@@ -22,23 +23,30 @@ struct RenderSettings {
     // The image plane (core/sampling/image_plane.hpp) skips the others.
     int rowBegin = 0;
     int rowEnd = -1;
+    // Polled between rows (core/base/progress.hpp) and passes (ScopedTimer); null: never cancelled.
+    const CancelFlag* cancel = nullptr;
 };
 
-// Named wall-clock durations of passes, in the order they ran.
+// Named wall-clock durations of passes, in the order they ran. Every timed
+// pass starts by polling the render's cancel flag (core/base/cancel.hpp).
 class Timings {
 public:
     void add(const std::string& name, double ms) { entries_.emplace_back(name, ms); }
     const std::vector<std::pair<std::string, double>>& entries() const { return entries_; }
+    const CancelFlag* cancel = nullptr;
 
 private:
     std::vector<std::pair<std::string, double>> entries_;
 };
 
-// Adds the lifetime of the scope to a Timings entry.
+// Adds the lifetime of the scope to a Timings entry; throws Cancelled
+// instead of starting when the render was asked to stop.
 class ScopedTimer {
 public:
     ScopedTimer(Timings& timings, std::string name)
-        : timings_(timings), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
+        : timings_(timings), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {
+        throwIfCancelled(timings.cancel);
+    }
     ~ScopedTimer() {
         timings_.add(name_, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());
     }

@@ -117,7 +117,8 @@ std::string checked(const ParamSpec& spec, const std::string& text) {
             double v = 0;
             if (!parseNumber(text, v)) throw Error("'" + text + "' is not a number");
             if (spec.type == ParamType::Int && v != std::floor(v)) throw Error("'" + text + "' is not an integer");
-            if (v < spec.min || v > spec.max) throw Error(text + " is outside " + spec.allowedText());
+            if (v < spec.min || v > spec.max || (spec.type == ParamType::Int && integerOutOfRange(text, spec)))
+                throw Error(text + " is outside " + spec.allowedText());
             return spec.type == ParamType::Int ? std::to_string(static_cast<long long>(v)) : formatNumber(v);
         }
         case ParamType::Enum:

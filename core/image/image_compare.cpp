@@ -116,6 +116,7 @@ ImageComparison compareImages(const Image& test, const Image& reference, double 
     if (test.width() != reference.width() || test.height() != reference.height())
         throw Error("images differ in size: " + std::to_string(test.width()) + "x" + std::to_string(test.height()) + " vs " +
                     std::to_string(reference.width()) + "x" + std::to_string(reference.height()));
+    if (reference.width() == 0 || reference.height() == 0) throw Error("the images are empty (0x0): there is nothing to compare");
     std::vector<std::pair<int, int>> pairs;
     ImageComparison out;
     for (int cb = 0; cb < reference.channelCount(); ++cb)

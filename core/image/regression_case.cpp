@@ -1,6 +1,7 @@
 #include "core/image/regression_case.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 #include "core/base/json_doc.hpp"
 
 namespace weft {
@@ -28,6 +29,7 @@ std::string text(const JsonDoc& doc, const char* key, bool required) {
 }  // namespace
 
 RegressionCase readRegressionCase(const std::string& path) {
+    requireRegularFile(path, "regression case");  // a FIFO would block the read forever
     const JsonDoc doc = JsonDoc::load(path);
     if (!doc.root().is_object()) throw Error(path + ": a regression case must be a JSON object");
     RegressionCase c;

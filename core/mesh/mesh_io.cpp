@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -36,7 +37,24 @@ std::string oneLine(std::string text) {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error("mesh '" + path + "': " + what); }
 
-Material fromMtl(const tinyobj::material_t& m) {
+constexpr double kMaxAlbedo = 1e3, kMaxEmission = 1e9, kMaxExponent = 1e6;
+
+// MTL values within the ranges shading stays finite in: tinyobjloader reads
+// "Ns 1e39" as float infinity, which reached images as NaN.
+void checkMtlValue(const std::string& path, const tinyobj::material_t& m, const char* key, double v, double hi) {
+    if (std::isfinite(v) && v >= 0 && v <= hi) return;
+    char text[160];
+    std::snprintf(text, sizeof text, "%s %g is outside [0, %g]", key, v, hi);
+    fail(path, "material '" + m.name + "': " + text);
+}
+
+Material fromMtl(const std::string& path, const tinyobj::material_t& m) {
+    for (int i = 0; i < 3; ++i) {
+        checkMtlValue(path, m, "Kd", m.diffuse[i], kMaxAlbedo);
+        checkMtlValue(path, m, "Ks", m.specular[i], kMaxAlbedo);
+        checkMtlValue(path, m, "Ke", m.emission[i], kMaxEmission);
+    }
+    checkMtlValue(path, m, "Ns", std::max(0.0f, float(m.shininess)), kMaxExponent);  // a negative exponent reads as 0
     Material out;
     out.name = m.name;
     out.diffuse = Vec3f(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
@@ -84,8 +102,27 @@ void checkObjVertexNumbers(const std::string& path) {
     }
 }
 
+// Material files are inputs like the OBJ: a FIFO named by mtllib blocked
+// tinyobjloader's read forever; a missing one is named in weft's words.
+void checkMtlFiles(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    const fs::path dir = fs::path(path).parent_path();
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream words(line);
+        std::string key;
+        if (!(words >> key) || key != "mtllib") continue;
+        for (std::string name; words >> name;) {
+            const fs::path mtl = dir / name;
+            std::error_code ec;
+            if (!fs::exists(fs::symlink_status(mtl, ec))) fail(path, "its material file '" + mtl.string() + "' (mtllib) does not exist");
+            requireRegularFile(mtl.string(), "material file");
+        }
+    }
+}
+
 PolyMesh readObj(const std::string& path) {
     checkObjVertexNumbers(path);
+    checkMtlFiles(path);
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;
     config.vertex_color = false;
@@ -96,7 +133,7 @@ PolyMesh readObj(const std::string& path) {
     PolyMesh out;
     const auto& v = reader.GetAttrib().vertices;
     for (std::size_t i = 0; i + 2 < v.size(); i += 3) out.positions.emplace_back(v[i], v[i + 1], v[i + 2]);
-    for (const tinyobj::material_t& m : reader.GetMaterials()) out.materials.push_back(fromMtl(m));
+    for (const tinyobj::material_t& m : reader.GetMaterials()) out.materials.push_back(fromMtl(path, m));
     const int fallback = int(out.materials.size());
     bool usesFallback = false;
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {

@@ -131,6 +131,7 @@ TEST(MeshLoading, BadFilesGiveOneLineErrors) {
     for (const auto& c : cases) {
         const std::string msg = errorOf([&] { readPolyMesh((dir / c.file).string()); });
         EXPECT_NE(msg.find(c.expected), std::string::npos) << c.file << ": " << msg;
+        EXPECT_EQ(msg.find("Use default material"), std::string::npos) << msg;  // the loader's words, not weft's
         EXPECT_EQ(msg.find('\n'), std::string::npos) << c.file << ": " << msg;
         EXPECT_NE(msg.find(c.file), std::string::npos) << msg;
     }

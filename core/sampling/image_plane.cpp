@@ -29,6 +29,8 @@ int squareRootOf(int spp) {
 
 }  // namespace
 
+constexpr double kMinFilterRadius = 0.01;
+
 std::vector<ParamSpec> imagePlaneParamSpecs(PlainSamples plain) {
     return {
         stringParam("pattern", "", std::string("image-plane sample positions: a pattern spec (weft pattern --list), e.g. "
@@ -36,7 +38,7 @@ std::vector<ParamSpec> imagePlaneParamSpecs(PlainSamples plain) {
                     [](const std::string& v) { if (!v.empty()) validatePatternSpec(v); }),
         enumParam("filter", "box", {"box", "tent", "gaussian", "mitchell", "bspline", "raised_cosine"},
                   "reconstruction filter; wider than box, samples count across pixel boundaries (weighted average)"),
-        floatParam("filter_radius", 0, 0, 8, "filter radius in pixels (0: the filter's customary radius)"),
+        floatParam("filter_radius", 0, 0, 8, "filter radius in pixels, 0 or at least 0.01 (0: the filter's customary radius)"),
         enumParam("adaptive", "off", {"off", "supersample", "stochastic"},
                   "supersample: split pixel corners that differ (Wolberg 6.2.2); stochastic: add adaptive_spp "
                   "samples where the pattern's samples differ in contrast (6.3.5)"),
@@ -58,6 +60,10 @@ ImagePlaneOptions readImagePlaneOptions(const ParamSet& p, PlainSamples plain) {
     o.pattern = p.getString("pattern");
     o.filter = ReconstructionFilter::kindFromName(p.getString("filter"));
     o.filterRadius = p.getFloat("filter_radius");
+    // A filter a hair wide weighs its samples 1 / radius: 1e-300 overflowed to Inf and every pixel to NaN.
+    if (o.filterRadius > 0 && o.filterRadius < kMinFilterRadius)
+        throw Error("filter_radius " + formatNumber(o.filterRadius) + " is narrower than 0.01 pixels (no sample would fall in it); "
+                    "give 0 for the filter's customary radius, or a radius in [0.01, 8]");
     const std::string a = p.getString("adaptive");
     o.adaptive = a == "supersample" ? AdaptiveMode::Supersample : a == "stochastic" ? AdaptiveMode::Stochastic : AdaptiveMode::Off;
     o.threshold = p.getFloat("adaptive_threshold");
@@ -125,7 +131,7 @@ Image ImagePlane::gather(const std::vector<std::vector<float>>& rows) const {
                         wsum += w;
                     }
             float* out = image.pixel(px, py);
-            if (std::abs(wsum) > 1e-9) {
+            if (std::abs(wsum) > 1e-9 && std::isfinite(wsum)) {
                 for (int c = 0; c < 4; ++c) out[c] = float(sum[c] / wsum);
                 continue;
             }

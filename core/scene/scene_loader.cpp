@@ -1,6 +1,7 @@
 // Scene files: strict JSON. Every object lists the keys it accepts; an unknown
 // key, a wrong type or a value out of range is an error at file:line:column.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -13,7 +14,9 @@
 #include "core/base/params.hpp"
 #include "core/base/render_options.hpp"
 #include "core/scene/placement.hpp"
+#include "core/scene/scene_budget.hpp"
 #include "core/scene/scene.hpp"
+#include "core/base/world_limit.hpp"
 #include "core/volume/volume_grids.hpp"
 
 namespace fs = std::filesystem;
@@ -82,6 +85,61 @@ private:
 };
 
 constexpr double kHuge = 1e30;
+
+bool withinWorld(const Vec3d& p) {
+    return std::abs(p.x()) <= kWorldLimit && std::abs(p.y()) <= kWorldLimit && std::abs(p.z()) <= kWorldLimit;
+}
+
+// A box never expanded (min above max) holds nothing; a flat one (a single
+// triangle) does, though OpenVDB calls it empty.
+bool withinWorld(const BBoxd& box) {
+    const bool unset = box.min().x() > box.max().x() || box.min().y() > box.max().y() || box.min().z() > box.max().z();
+    return unset || (withinWorld(box.min()) && withinWorld(box.max()));
+}
+
+void requireWithinWorld(const std::string& what, const Vec3d& p) {
+    if (withinWorld(p)) return;
+    char text[200];
+    std::snprintf(text, sizeof text, " lies at (%g, %g, %g), beyond the +-%g scene units weft renders in", p.x(), p.y(), p.z(), kWorldLimit);
+    throw Error(what + text);
+}
+
+// Refuses a scene that reaches beyond kWorldLimit, naming the first item that does.
+void requireSceneWithinWorld(const Scene& scene) {
+    const auto boxText = [](const BBoxd& b) {
+        char text[240];
+        std::snprintf(text, sizeof text, " spans (%g, %g, %g) to (%g, %g, %g), beyond the +-%g scene units weft renders in", b.min().x(),
+                      b.min().y(), b.min().z(), b.max().x(), b.max().y(), b.max().z(), kWorldLimit);
+        return std::string(text);
+    };
+    for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
+        if (!scene.volumes[i].grid) continue;
+        const Vec3d voxel = scene.volumes[i].grid->voxelSize();
+        if (!(voxel.x() >= kMinVoxelSize && voxel.y() >= kMinVoxelSize && voxel.z() >= kMinVoxelSize && voxel.x() <= kMaxVoxelSize &&
+              voxel.y() <= kMaxVoxelSize && voxel.z() <= kMaxVoxelSize)) {
+            char text[200];
+            std::snprintf(text, sizeof text, "'): voxel size (%g, %g, %g) as placed is outside [%g, %g] scene units", voxel.x(), voxel.y(),
+                          voxel.z(), kMinVoxelSize, kMaxVoxelSize);
+            throw Error("volume " + std::to_string(i) + " ('" + scene.volumes[i].source + text);
+        }
+    }
+    for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+        if (!withinWorld(scene.volumes[i].worldBox()))
+            throw Error("volume " + std::to_string(i) + " ('" + scene.volumes[i].source + "')" + boxText(scene.volumes[i].worldBox()) +
+                        " (is its voxel size, scale or translate too large?)");
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+        if (!withinWorld(scene.meshes[i].bounds()))
+            throw Error("mesh " + std::to_string(i) + boxText(scene.meshes[i].bounds()) + " (is a vertex, its scale or translate too large?)");
+    requireWithinWorld("the camera's eye", scene.camera.eye);
+    requireWithinWorld("the camera's target", scene.camera.target);
+    for (const auto& [f, cam] : scene.cameraPath.keys) {
+        requireWithinWorld("the camera key at frame " + formatNumber(f) + ": its eye", cam.eye);
+        requireWithinWorld("the camera key at frame " + formatNumber(f) + ": its target", cam.target);
+    }
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].type == LightType::Point) requireWithinWorld("light " + std::to_string(i) + "'s position", scene.lights[i].position);
+}
+
 
 Camera readCamera(const ObjectReader& r, const Camera& defaults = Camera{}) {
     Camera cam;
@@ -169,6 +227,7 @@ Placement readPlacement(const ObjectReader& r) {
     for (int i = 0; i < 3; ++i)
         if (std::abs(p.rotateDegrees[i]) > 3600) r.fail("rotate", "rotate must be [rx, ry, rz] in degrees, each within +-3600");
     p.translate = r.vec3("translate", p.translate);
+    if (!withinWorld(p.translate)) r.fail("translate", "translate must lie within +-" + formatNumber(kWorldLimit) + " scene units on each axis");
     return p;
 }
 
@@ -304,7 +363,37 @@ void buildEmission(Volume& vol, const EmissionGrids& grids, const EmissionSettin
     vol.emission = buildEmissionGrid(grids.temperature.get(), grids.emission.get(), settings, vol.grid->transform());
 }
 
-Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame) {
+const std::set<std::string> kVolumeKeys{"file", "grid", "grids", "emission", "motion", "procedural", "resolution", "seed",
+                                        "transfer_function", "medium", "translate", "rotate", "scale"};
+
+// A volume's settings that need none of its grids, checked before any volume loads.
+void checkVolumeSettings(const ObjectReader& r) {
+    if (r.has("file") == r.has("procedural")) r.failAt(r.pointer(), "a volume needs exactly one of 'file' or 'procedural'");
+    r.number("resolution", 128, 4, 1024);
+    r.number("seed", 1, 0, 4294967295.0);
+    readPlacement(r);
+    if (r.has("medium")) readMedium(ObjectReader(r.doc(), r.child("medium"), "medium", {"absorb", "scatter", "g"}));
+    if (r.has("motion")) readMotion(ObjectReader(r.doc(), r.child("motion"), "motion", {"velocity_scale", "fps"}));
+    if (r.has("emission"))
+        readEmission(ObjectReader(r.doc(), r.child("emission"), "emission",
+                                  {"temperature_scale", "temperature_offset", "blackbody_intensity", "color", "strength"}));
+}
+
+// Grids read by this scene so far, by file and grid name: a file named by
+// many volumes is read once and its tree shared (1,000 references to one
+// small .vdb took 6.2 GB).
+using LoadedGrids = std::map<std::pair<std::string, std::string>, openvdb::FloatGrid::ConstPtr>;
+
+openvdb::FloatGrid::ConstPtr readSharedFloatGrid(const std::string& path, const std::string& grid, LoadedGrids& loaded) {
+    std::error_code ec;
+    const std::pair<std::string, std::string> key{fs::weakly_canonical(path, ec).string(), grid};
+    if (const auto it = loaded.find(key); it != loaded.end()) return it->second;
+    openvdb::FloatGrid::ConstPtr read = readFloatGrid(path, grid);
+    loaded.emplace(key, read);
+    return read;
+}
+
+Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<int> frame, LoadedGrids& loaded) {
     Volume vol;
     const bool fromFile = r.has("file"), procedural = r.has("procedural");
     if (fromFile == procedural) r.failAt(r.pointer(), "a volume needs exactly one of 'file' or 'procedural'");
@@ -336,7 +425,7 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
     openvdb::Vec3SGrid::Ptr color;
     try {
         vol.source = fromFile ? file.string() : "procedural:" + kind;
-        vol.grid = fromFile ? readFloatGrid(vol.source, grid) : makeProceduralGrid(kind, res, seed);
+        vol.grid = fromFile ? readSharedFloatGrid(vol.source, grid, loaded) : makeProceduralGrid(kind, res, seed);
         vol.grids = "density=" + vol.grid->getName();
         emitting = readEmissionGrids(vol, names, own, vol.source);
         if (procedural && kind == "fire" && !emitting.temperature) {
@@ -353,7 +442,13 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
     if (r.has("motion") && !vol.motion) r.fail("motion", "motion settings need a velocity grid (see 'grids')");
     vol.name = vol.grid->getName();
     const Placement placement = readPlacement(r);
-    if (!placement.identity()) vol.grid = placeGrid(vol.grid, placement.matrix());
+    if (!placement.identity()) {
+        try {
+            vol.grid = placeGrid(vol.grid, placement.matrix());
+        } catch (const openvdb::Exception&) {  // ArithmeticError: OpenVDB's words
+            r.fail("scale", "the placement makes the volume's transform singular (is the scale too small?)");
+        }
+    }
     if (color) color->setTransform(vol.grid->transform().copy());  // its index space is the density's
     vol.color = color;
     try {
@@ -384,8 +479,9 @@ void readMesh(const ObjectReader& r, const fs::path& baseDir, Scene& scene) {
         transformMesh(poly, placement.matrix());
         // Embree needs finite coordinates; a huge scale can overflow floats.
         for (const Vec3f& v : poly.positions)
-            if (!(std::abs(v.x()) < 1e30f && std::abs(v.y()) < 1e30f && std::abs(v.z()) < 1e30f))
-                r.fail("scale", "the placed mesh has a vertex beyond 1e30 (is the scale or translate too large?)");
+            if (!withinWorld(Vec3d(v.x(), v.y(), v.z())))
+                r.fail("scale", "the placed mesh has a vertex beyond +-" + formatNumber(kWorldLimit) +
+                                    " scene units, the range weft renders in (is a vertex, the scale or translate too large?)");
         scene.addMesh(subdivide(poly, level, file.string()));
     } catch (const Error& e) {
         r.fail("file", e.what());
@@ -445,29 +541,69 @@ void settleMotion(Scene& scene) {
     }
 }
 
-Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::optional<int> frame) {
+// Ignores what it cannot estimate: the loader then reports it with its position.
+template <class F>
+double estimateOrZero(F&& estimate) {
+    try {
+        return estimate();
+    } catch (const std::exception&) {
+        return 0;
+    }
+}
+
+// What the scene's volumes and meshes will take once loaded (scene_budget.hpp);
+// a file named by several volumes counts once, as it loads once.
+double jsonSceneLoadBytes(const JsonDoc& doc, const fs::path& baseDir, std::optional<int> frame) {
+    const json& root = doc.root();
+    double bytes = 0;
+    std::set<std::string> files;
+    if (root.contains("volumes") && root["volumes"].is_array())
+        for (const json& v : root["volumes"]) {
+            if (v.contains("file") && v["file"].is_string()) {
+                const fs::path file = scenePath(v["file"].get<std::string>(), baseDir, frame);
+                std::error_code ec;
+                if (files.insert(fs::weakly_canonical(file, ec).string()).second) bytes += estimateOrZero([&] { return vdbLoadBytes(file.string()); });
+            } else if (v.contains("procedural") && v["procedural"].is_string()) {
+                const int res = v.contains("resolution") && v["resolution"].is_number() ? int(v["resolution"].get<double>()) : 128;
+                bytes += proceduralLoadBytes(res, v["procedural"].get<std::string>());
+            }
+        }
+    if (root.contains("meshes") && root["meshes"].is_array())
+        for (const json& m : root["meshes"])
+            if (m.contains("file") && m["file"].is_string()) {
+                fs::path file = m["file"].get<std::string>();
+                if (file.is_relative()) file = baseDir / file;
+                bytes += estimateOrZero([&] { return meshLoadBytes(file.string()); });
+            }
+    return bytes;
+}
+
+Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::optional<int> frame, double limitBytes) {
     const JsonDoc doc = JsonDoc::load(path);
     ObjectReader top(doc, "", "scene", {"camera", "volumes", "meshes", "lights", "render"});
     const fs::path baseDir = fs::path(path).parent_path();
     Scene scene;
     scene.source = path;
-    if (top.has("volumes"))
-        forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) {
-            scene.volumes.push_back(readVolume(ObjectReader(doc, p, "volume", {"file", "grid", "grids", "emission", "motion", "procedural", "resolution", "seed", "transfer_function", "medium", "translate", "rotate", "scale"}), baseDir, frame));
-        });
-    if (top.has("meshes"))
-        forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) {
-            readMesh(ObjectReader(doc, p, "mesh", {"file", "subdivision", "scale", "rotate", "translate"}), baseDir, scene);
-        });
+    // What needs no file is read first, and every volume's and mesh's own
+    // keys are checked, so a mistake anywhere in the document is found
+    // before any grid or mesh loads (a bad camera.up once waited on 5 s of fire).
+    if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", keysOf(doc.root().at("render"))), scene.render);
+    if (top.has("camera"))
+        readSceneCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov", "keys", "shutter"}), frame, scene);
     if (top.has("lights"))
         forEachInArray(doc, "/lights", "lights", [&](const std::string& p) {
             scene.lights.push_back(readLight(ObjectReader(doc, p, "light", {"type", "direction", "position", "color", "intensity"})));
         });
-    if (top.has("render")) readRender(ObjectReader(doc, "/render", "render", keysOf(doc.root().at("render"))), scene.render);
-    if (top.has("camera")) {
-        readSceneCamera(ObjectReader(doc, "/camera", "camera", {"eye", "target", "up", "fov", "keys", "shutter"}), frame, scene);
-    }
-    else if (!scene.volumes.empty() || !scene.meshes.empty()) {
+    const auto volumeAt = [&](const std::string& p) { return ObjectReader(doc, p, "volume", kVolumeKeys); };
+    const auto meshAt = [&](const std::string& p) { return ObjectReader(doc, p, "mesh", {"file", "subdivision", "scale", "rotate", "translate"}); };
+    if (top.has("volumes")) forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) { checkVolumeSettings(volumeAt(p)); });
+    if (top.has("meshes")) forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) { readPlacement(meshAt(p)); });
+    requireLoadWithin(jsonSceneLoadBytes(doc, baseDir, frame), limitBytes, "scene '" + path + "'");
+    LoadedGrids loaded;
+    if (top.has("volumes"))
+        forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) { scene.volumes.push_back(readVolume(volumeAt(p), baseDir, frame, loaded)); });
+    if (top.has("meshes")) forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) { readMesh(meshAt(p), baseDir, scene); });
+    if (!top.has("camera") && (!scene.volumes.empty() || !scene.meshes.empty())) {
         double sceneAspect = 1.0;
         if (scene.render.resolution) {
             const auto [w, h] = parseResolution(*scene.render.resolution);
@@ -489,10 +625,11 @@ Scene sceneAroundVolume(Volume vol, const std::string& source, double aspect) {
 
 // Density, temperature and emission by their conventional names
 // (core/volume/volume_grids.hpp), at the default emission settings.
-Scene loadBareVdb(const std::string& path, double aspect, const std::string& gridName) {
+Scene loadBareVdb(const std::string& path, double aspect, const std::string& gridName, double limitBytes) {
     Volume vol;
     vol.source = path;
     requireRegularFile(path, "volume");
+    requireLoadWithin(vdbLoadBytes(path), limitBytes, "volume '" + path + "'");
     std::map<std::string, std::string> names = pickConventionalGrids(path, gridName);
     names.erase("velocity");  // a bare .vdb's shutter is closed: nothing to blur
     vol.grid = readFloatGrid(path, names.at("density"));
@@ -515,9 +652,10 @@ Scene loadAnalyticBuiltin(const std::string& name) {
     return scene;
 }
 
-Scene loadBareMesh(const std::string& path, double aspect) {
+Scene loadBareMesh(const std::string& path, double aspect, double limitBytes) {
     Scene scene;
     scene.source = path;
+    requireLoadWithin(meshLoadBytes(path), limitBytes, "mesh '" + path + "'");
     scene.addMesh(triangulate(readPolyMesh(path), path));
     scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect);
     scene.render.technique = "mesh.pathtrace";
@@ -625,18 +763,34 @@ BBoxd Scene::worldBox() const {
     return box;
 }
 
-Scene loadScene(const std::string& input, std::optional<double> aspect, const std::string& gridName,
-                std::optional<int> frame) {
+namespace {
+
+Scene loadUncheckedScene(const std::string& input, std::optional<double> aspect, const std::string& gridName,
+                         std::optional<int> frame, double limitBytes) {
     if (!gridName.empty() && lowerExtension(input) != ".vdb") throw Error("--grid applies to a bare .vdb input; a scene file names its grids itself");
     if (input.rfind("builtin:", 0) == 0) return loadBuiltin(input.substr(8), aspect.value_or(1.0));
     const std::string ext = lowerExtension(input);
-    if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0), gridName);
-    if (ext == ".obj" || ext == ".ply") return loadBareMesh(input, aspect.value_or(1.0));
+    if (ext == ".vdb") return loadBareVdb(input, aspect.value_or(1.0), gridName, limitBytes);
+    if (ext == ".obj" || ext == ".ply") return loadBareMesh(input, aspect.value_or(1.0), limitBytes);
     if (ext == ".json") {
         requireRegularFile(input, "scene");
-        return loadJsonScene(input, aspect, frame);
+        return loadJsonScene(input, aspect, frame, limitBytes);
     }
     throw Error("input '" + input + "': expected a scene .json, a .vdb, .obj or .ply file or " + builtinSceneNames());
+}
+
+}  // namespace
+
+Scene loadSceneWithin(const std::string& input, std::optional<double> aspect, const std::string& gridName, std::optional<int> frame,
+                      double limitBytes) {
+    Scene scene = loadUncheckedScene(input, aspect, gridName, frame, limitBytes);
+    requireSceneWithinWorld(scene);
+    return scene;
+}
+
+Scene loadScene(const std::string& input, std::optional<double> aspect, const std::string& gridName,
+                std::optional<int> frame) {
+    return loadSceneWithin(input, aspect, gridName, frame, 0);
 }
 
 }  // namespace weft

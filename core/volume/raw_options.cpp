@@ -1,9 +1,11 @@
 // The text of convert's options, the names and sizes of the sample types,
 // and the grid transform they describe.
 #include <cfloat>
+#include <cstdio>
 #include <cmath>
 
 #include "core/base/error.hpp"
+#include "core/base/world_limit.hpp"
 #include "core/volume/header_text.hpp"
 #include "core/volume/raw_volume.hpp"
 
@@ -156,7 +158,26 @@ std::uint64_t rawByteCount(const RawVolumeSpec& spec) {
     return bytes;
 }
 
+// Within the ranges a volume may be placed in (core/base/world_limit.hpp):
+// OpenVDB's own ArithmeticError text reached the user for a spacing of 1e-30.
+void checkPlacement(const RawVolumeSpec& spec) {
+    char text[200];
+    for (int i = 0; i < 3; ++i)
+        if (!(spec.spacing[i] >= kMinVoxelSize && spec.spacing[i] <= kMaxVoxelSize)) {
+            std::snprintf(text, sizeof text, "voxel spacing %g,%g,%g is outside [%g, %g] on some axis", spec.spacing.x(), spec.spacing.y(),
+                          spec.spacing.z(), kMinVoxelSize, kMaxVoxelSize);
+            throw Error(describeRawSpec(spec) + ": " + text);
+        }
+    for (int i = 0; i < 3; ++i)
+        if (!(std::abs(spec.origin[i]) <= kWorldLimit)) {
+            std::snprintf(text, sizeof text, "origin %g,%g,%g lies beyond the +-%g units weft renders in", spec.origin.x(), spec.origin.y(),
+                          spec.origin.z(), kWorldLimit);
+            throw Error(describeRawSpec(spec) + ": " + text);
+        }
+}
+
 openvdb::math::Transform::Ptr rawTransform(const RawVolumeSpec& spec) {
+    checkPlacement(spec);
     if (isIdentity(spec.direction)) {
         auto transform = spacingTransform(spec.spacing);
         if (spec.origin != openvdb::Vec3d(0.0)) transform->postTranslate(spec.origin);

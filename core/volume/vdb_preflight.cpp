@@ -145,7 +145,7 @@ bool walkGrid(Walker& w, const Descriptor& d, const FileFormat& file, std::optio
     // one OpenVDB reads is its choice, so neither keeps a layout.
     const bool seen = layout.grids.count(d.name) > 0;
     VdbGridLayout& grid = layout.grids[d.name];
-    grid = {file.version, file.libraryMajor, file.libraryMinor, compression, d.halfFloat(), {}, !seen};
+    grid = {file.version, file.libraryMajor, file.libraryMinor, compression, d.halfFloat(), {}, !seen, d.components()};
     vdbwalk::walkFloatTree(w, {file.version, compression, d.halfFloat(), d.components(), topologyEnd, &grid.leaves});
     if (seen) grid.leaves.clear();
     return true;

@@ -24,6 +24,7 @@ struct VdbGridLayout {
     bool half = false;              // values stored as 16-bit floats
     std::vector<vdbwalk::LeafBufferAt> leaves;  // in the order OpenVDB reads them
     bool unique = true;                         // false: another grid has the name too, and no leaves are kept
+    int components = 1;                         // values per voxel: 1 (float) or 3 (vec3s)
 };
 struct VdbLayout {
     std::uint64_t fileSize = 0;                  // of the file walked: positions hold for that file only

@@ -1,6 +1,7 @@
 #include "core/volume/volume.hpp"
 
 #include <openvdb/io/File.h>
+#include <openvdb/io/GridDescriptor.h>
 #include <openvdb/tree/LeafManager.h>
 #include <openvdb/tools/Count.h>
 
@@ -80,9 +81,13 @@ namespace {
 // instead of one seek and read system call after another as OpenVDB's plain
 // read does.
 void loadLeavesInParallel(const openvdb::GridBase::Ptr& base, const std::string& path, const VdbLayout* file, const std::string& name) {
+    // OpenVDB shows an unnamed grid as "[0]" (a second "density" as
+    // "density[1]"); the file and the walk hold its unique name, the name
+    // and a separator byte before the number.
+    const std::string stored = openvdb::io::GridDescriptor::stringAsUniqueName(name);
     const VdbGridLayout* layout = nullptr;
     if (file)
-        if (const auto it = file->grids.find(name); it != file->grids.end()) layout = &it->second;
+        if (const auto it = file->grids.find(stored); it != file->grids.end()) layout = &it->second;
     try {
         loadLeaves(base, path, file, layout);
     } catch (...) {
@@ -138,6 +143,8 @@ openvdb::GridBase::Ptr readGridOf(const std::string& path, const std::string& gr
     try {
         base = file.readGrid(chosen);
         loadLeavesInParallel(base, path, layout.get(), chosen);
+    } catch (const Error& e) {  // the leaf reader's own reason
+        throw Error("volume '" + path + "': " + what + " cannot be read: " + e.what() + " (the file is corrupt)");
     } catch (const std::bad_alloc&) {
         throw Error("volume '" + path + "': " + what + " does not fit in memory (or its header is corrupt)");
     } catch (const std::exception&) {

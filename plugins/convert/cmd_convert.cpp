@@ -2,17 +2,21 @@
 // that `weft render` reads like any other. IN is a headerless raw file
 // (.raw, .raw.gz: --dims and --type describe it) or a file that describes
 // itself: NRRD (.nrrd, .nhdr), NumPy (.npy) or VTK legacy image data (.vtk).
-#include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/Count.h>
 
 #include <array>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/error.hpp"
+#include "core/base/input_file.hpp"
 #include "core/volume/raw_volume.hpp"
 #include "core/volume/volume_import.hpp"
 #include "plugins/host/command.hpp"
@@ -37,11 +41,20 @@ void checkVdbOutput(const std::string& path) {
 }
 
 // Temp name then rename: a failed write leaves any existing file as it was.
+// Written through a stream of our own, whose every write and close is
+// checked (io::File checks only its open: a full disk left a truncated file).
 void writeVdb(const openvdb::FloatGrid::Ptr& grid, const std::string& path) {
     AtomicOutput out(path);
-    openvdb::io::File file(out.tempPath());
-    file.write(openvdb::GridPtrVec{grid});
-    file.close();
+    std::ofstream os(out.tempPath(), std::ios::binary);
+    if (!os) throw Error("cannot write '" + path + "': " + std::strerror(errno));
+    errno = 0;
+    try {
+        openvdb::io::Stream(os).write(openvdb::GridPtrVec{grid});
+    } catch (const std::exception& e) {
+        throw Error("cannot write '" + path + "': " + (errno ? std::strerror(errno) : e.what()));
+    }
+    os.close();
+    if (!os) throw Error("cannot write '" + path + "': " + (errno ? std::strerror(errno) : "write failed"));
     out.commit();
 }
 
@@ -84,6 +97,7 @@ void runConvert(const ConvertCommand& c) {
     const auto start = std::chrono::steady_clock::now();
     checkVdbOutput(c.output);
     const VolumeImport im = planImport(c.input, c.options);
+    refuseInputAsOutput(c.output, "output");  // its data files are known now
     const openvdb::FloatGrid::Ptr grid = readVolumeSamples(im.data, im.spec);
     writeVdb(grid, c.output);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -10,6 +10,7 @@
 #include <map>
 
 #include "core/base/atomic_file.hpp"
+#include "core/base/input_file.hpp"
 #include "core/base/error.hpp"
 #include "core/image/image_io.hpp"
 #include "plugins/host/command.hpp"
@@ -55,6 +56,7 @@ void filterImage(Image& image, const ParamSet& params, const AtrousSettings& set
 void runFilter(const FilterOptions& o) {
     const ParamSet params = parseSets(o.sets);
     const AtrousSettings settings = atrousSettingsFrom(params);
+    requireRegularFile(o.input, "image");  // known as an input before the outputs are checked
     checkOutputPath(o.output, "output");
     if (!o.preview.empty()) checkOutputPath(o.preview, "preview");
     Metadata metadata;

@@ -14,6 +14,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/frames.hpp"
+#include "core/base/input_file.hpp"
 #include "core/base/render_options.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/render_job.hpp"
@@ -39,6 +40,7 @@ RenderRequest requestOf(const json& job, const std::string& where) {
 }
 
 std::vector<RenderRequest> loadBatch(const std::string& path) {
+    requireRegularFile(path, "batch");  // a FIFO would block the read forever
     std::ifstream in(path);
     if (!in) throw Error("batch '" + path + "': cannot be read");
     json doc;

@@ -6,6 +6,7 @@
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/frames.hpp"
+#include "core/base/input_file.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/tile_merge.hpp"
 
@@ -24,6 +25,7 @@ void runMerge(MergeOptions o) {
         for (std::string& t : o.tiles) t = expandFrameName(t, *o.frame);
         o.output = expandFrameName(o.output, *o.frame);
     }
+    for (const std::string& t : o.tiles) requireRegularFile(t, "image");  // known as inputs before the output is checked
     checkOutputPath(o.output, "output");
     const MergedFrame frame = mergeTiles(o.tiles);
     writeExr(frame.image, o.output, frame.metadata);

@@ -6,14 +6,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/frames.hpp"
 #include "core/base/huge_pages.hpp"
+#include "core/base/input_file.hpp"
 #include "core/base/physical_memory.hpp"
 #include "core/base/progress.hpp"
 #include "core/scene/scene.hpp"
+#include "core/scene/scene_budget.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/technique.hpp"
 
@@ -32,7 +35,7 @@ void checkDistinctOutputs(const RenderRequest& r) {
             if (named[i].second->empty() || named[j].second->empty()) continue;
             std::error_code ec;
             const auto a = std::filesystem::weakly_canonical(*named[i].second, ec), b = std::filesystem::weakly_canonical(*named[j].second, ec);
-            if (a == b)
+            if (a == b || sameExistingFile(*named[i].second, *named[j].second))
                 throw Error(std::string(named[j].first) + " names the same file as " + named[i].first + " ('" + *named[j].second +
                             "'); each output needs its own file");
         }
@@ -48,8 +51,15 @@ void checkOutputs(const RenderRequest& r) {
         checkOutputPath(r.preview, "preview");
         if (!isPreviewPath(r.preview)) throw Error("preview '" + r.preview + "': expected a .png, .jpg or .tif file");
     }
-    if (!r.stats.empty()) checkOutputPath(r.stats, "stats");
+    if (!r.stats.empty()) checkOutputPath(r.stats, "stats", OutputKind::Text);
     checkDistinctOutputs(r);
+}
+
+// Once the scene has loaded, every file it read is known: no output may be one.
+void refuseInputsAsOutputs(const RenderRequest& r) {
+    if (!r.output.empty()) refuseInputAsOutput(r.output, "output");
+    if (!r.preview.empty()) refuseInputAsOutput(r.preview, "preview");
+    if (!r.stats.empty()) refuseInputAsOutput(r.stats, "stats");
 }
 
 // `q` is the effective request (effectiveRequest): every scene option is set.
@@ -142,8 +152,12 @@ double physicalMemoryGiB() { return physicalMemoryBytes() / double(1 << 30); }
 // What a render needs: the technique's working memory per pixel and the
 // scene already loaded (grids and meshes). Refused before the technique
 // allocates anything when it exceeds the limit.
+static double memoryLimitBytes(const RenderRequest& r) {
+    return (r.maxMemoryGiB > 0 ? r.maxMemoryGiB : 0.75 * physicalMemoryGiB()) * double(1 << 30);
+}
+
 void checkMemory(const RenderRequest& r, int width, int height, const std::string& technique, double sceneBytes) {
-    const double limit = r.maxMemoryGiB > 0 ? r.maxMemoryGiB : 0.75 * physicalMemoryGiB();
+    const double limit = memoryLimitBytes(r) / double(1 << 30);
     const double perPixel = techniques().has(technique) ? techniques().get(technique).bytesPerPixel : 32;  // unknown: refused later
     const double gib = double(1 << 30), image = double(width) * double(height) * perPixel / gib, need = image + sceneBytes / gib;
     if (need > limit) {
@@ -159,7 +173,9 @@ void checkMemory(const RenderRequest& r, int width, int height, const std::strin
 // (vertices, indices and a BVH of about 64 bytes per triangle).
 double sceneBytes(const Scene& scene) {
     double bytes = 0;
-    for (const Volume& v : scene.volumes) bytes += double(v.grid->memUsage());
+    std::set<const void*> trees;  // volumes placed from one file share its tree
+    for (const Volume& v : scene.volumes)
+        if (trees.insert(&v.grid->tree()).second) bytes += double(v.grid->memUsage());
     for (const auto& m : scene.meshes) bytes += double(m.triangleCount()) * (3 * 12 + 12 + 64);
     return bytes;
 }
@@ -170,6 +186,9 @@ void validateRequest(const RenderRequest& r) {
     checkRenderNumber("threads", r.threads, kOnCommandLine);
     checkRenderNumber("max-memory", r.maxMemoryGiB, kOnCommandLine);
     if (r.spp) checkRenderNumber("spp", *r.spp, kOnCommandLine);
+    // Exactly, not through a double (2^53 + 1 would read as 2^53); the table's range is [0, 2^53].
+    if (r.seed && *r.seed > (std::uint64_t(1) << 53))
+        throw Error("seed " + std::to_string(*r.seed) + " is outside [0, 9007199254740992]");
     if (r.resolution) {
         const auto [w, h] = parseResolution(*r.resolution);
         checkMemory(r, w, h, r.technique.value_or(defaultTechnique(r.sets)), 0);
@@ -192,15 +211,16 @@ LoadedScene loadRequestScene(const RenderRequest& r) {
     const auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded;
     loaded.scene = std::make_shared<const Scene>(
-        inStage("loading '" + r.input + "'", [&] { return loadScene(r.input, requestAspect(r), r.grid, r.frame); }));
+        inStage("loading '" + r.input + "'", [&] { return loadSceneWithin(r.input, requestAspect(r), r.grid, r.frame, memoryLimitBytes(r)); }));
     loaded.loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return loaded;
 }
 
-RenderOutcome renderToImage(const RenderRequest& r) {
+RenderOutcome renderToImage(const RenderRequest& r, const std::function<void()>& afterLoad) {
     validateRequest(r);  // cheap checks fail before the scene loads
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
     const LoadedScene loaded = loadRequestScene(r);
+    if (afterLoad) afterLoad();
     return renderLoadedScene(r, loaded);
 }
 
@@ -231,10 +251,12 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     const Scene& scene = *loaded.scene;
     RenderContext ctx;
     ctx.timings.add("load", loaded.loadMs);
+    ctx.timings.cancel = r.cancel;
     const CheckedRender checked = checkRender(r, scene);
     const RenderRequest& q = checked.effective;
     const ParamSet& params = checked.params;
     ctx.settings = settingsFor(q);
+    ctx.settings.cancel = r.cancel;
     RowBand band{0, ctx.settings.height};
     if (!r.tile.empty()) {
         const auto [index, count] = parseTileSpec(r.tile);
@@ -300,8 +322,9 @@ ExrEncoding exrEncodingFor(const RenderRequest& r, RenderOutcome& out) {
 }
 
 RenderOutcome runRender(const RenderRequest& r) {
+    const InputJob job;  // the files this render reads, which its outputs must not replace
     checkOutputs(r);
-    RenderOutcome out = renderToImage(r);
+    RenderOutcome out = renderToImage(r, [&] { refuseInputsAsOutputs(r); });
     const auto t0 = std::chrono::steady_clock::now();
     if (!r.output.empty()) {
         const ExrEncoding encoding = exrEncodingFor(r, out);

@@ -30,8 +30,9 @@ struct RenderOutcome {
 // technique is known without loading the scene); throws on the first problem.
 void validateRequest(const RenderRequest& request);
 
-// Renders without writing anything (tests and chains use this directly).
-RenderOutcome renderToImage(const RenderRequest& request);
+// Renders without writing anything (tests and chains use this directly);
+// afterLoad runs once the scene has loaded, before the technique starts.
+RenderOutcome renderToImage(const RenderRequest& request, const std::function<void()>& afterLoad = {});
 
 // The two halves of renderToImage, for callers that render one scene many
 // times (weft sweep): the scene as the request loads it (framed for its

@@ -343,3 +343,33 @@ TEST(ConvertCli, Aneurism) {
     EXPECT_EQ(range.max(), 255.0f);
     EXPECT_TRUE(openvdb::CoordBBox(Coord(0), Coord(255)).isInside(grid->evalActiveVoxelBoundingBox()));
 }
+
+namespace {
+
+// Spacings and origins outside the ranges a volume may be placed in are
+// refused in weft's words (OpenVDB's ArithmeticError text reached the user),
+// and the input is never the output.
+TEST(ConvertCli, PlacementOutsideTheRangesIsRefusedInOwnWords) {
+    TempDir dir;
+    writeBinary(dir / "in.raw", std::string(8, '\5'));
+    const std::string base = "convert " + (dir / "in.raw").string() + " --dims 2,2,2 --type u8 -o " + (dir / "out.vdb").string();
+    const std::pair<std::string, std::string> cases[] = {
+        {" --spacing 1e-30,1,1", "voxel spacing 1e-30,1,1 is outside [1e-08, 1e+08]"},
+        {" --origin 1e300,0,0", "origin 1e+300,0,0 lies beyond the +-1e+12 units"},
+    };
+    for (const auto& [args, words] : cases) {
+        const CommandResult r = runWeft(base + args);
+        EXPECT_NE(r.status, 0) << args;
+        EXPECT_NE(r.output.find(words), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("ArithmeticError"), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir / "out.vdb"));
+    }
+    writeBinary(dir / "self.vdb", std::string(8, '\5'));
+    const CommandResult self = runWeft("convert " + (dir / "self.vdb").string() + " --dims 2,2,2 --type u8 -o " + (dir / "self.vdb").string());
+    EXPECT_NE(self.status, 0);
+    EXPECT_NE(self.output.find("this run reads"), std::string::npos) << self.output;
+    EXPECT_EQ(readBytes(dir / "self.vdb"), std::string(8, '\5'));
+}
+
+}  // namespace

@@ -43,6 +43,31 @@ protected:
         std::filesystem::create_symlink(dir / "loop1.vdb", dir / "loop2.vdb");
         std::filesystem::create_symlink(dir / "gone.obj", dir / "dangling.obj");
         writeText(dir / "huge.json", "{\"camera\": {\"fov\": 1" + std::string(400, '0') + "}}\n");
+        // Coordinates Embree would abort on (ray origins past 1.8e18), or float precision long lost.
+        writeText(dir / "far.obj", "v -1 -1 0\nv 1.188e23 -1 0\nv 0 1 0\nf 1 2 3\n");
+        writeText(dir / "far.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                   "-1 -1 0\n1.188e23 -1 0\n0 1 0\n3 0 1 2\n");
+        writeText(dir / "far_eye.json", "{\"meshes\": [{\"file\": \"tri.obj\"}], \"camera\": {\"eye\": [0, 0, 1e19], \"target\": [0, 0, 0]}}\n");
+        writeText(dir / "far_light.json", "{\"meshes\": [{\"file\": \"tri.obj\"}], \"lights\": [{\"type\": \"point\", \"position\": [0, 2e12, 0]}]}\n");
+        writeText(dir / "far_volume.json", "{\"volumes\": [{\"procedural\": \"sphere\", \"resolution\": 8, \"translate\": [0, 0, 999999999999], \"scale\": 1e8}]}\n");
+        writeText(dir / "tiny_voxels.json", "{\"volumes\": [{\"file\": \"sphere.vdb\", \"scale\": 1e-12}]}\n");
+        writeText(dir / "huge_voxels.json", "{\"volumes\": [{\"procedural\": \"sphere\", \"resolution\": 8, \"scale\": 1e9}]}\n");
+        writeText(dir / "inf.mtl", "newmtl shiny\nKd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs 1e39\n");
+        writeText(dir / "shiny.obj", "mtllib inf.mtl\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nusemtl shiny\nf 1 2 3\n");
+        mkfifo((dir / "pipe.mtl").c_str(), 0600);
+        writeText(dir / "piped.obj", "mtllib pipe.mtl\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+        writeText(dir / "late_camera.json", "{\"volumes\": [{\"file\": \"missing.vdb\"}],\n"
+                                            " \"camera\": {\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"up\": [0, 0, 1]}}\n");
+        writeText(dir / "late_key.json", "{\"volumes\": [{\"file\": \"missing.vdb\"}, {\"procedural\": \"sphere\", \"scael\": 2}]}\n");
+        writeText(dir / "deep.json", std::string(100000, '[') + std::string(100000, ']'));
+        {
+            std::string many = "{\"volumes\": [";
+            for (int i = 0; i < 1000; ++i) many += std::string(i ? ", " : "") + "{\"procedural\": \"cloud\", \"resolution\": 128}";
+            writeText(dir / "many_volumes.json", many + "]}\n");
+        }
+        writeText(dir / "far_translate.json", "{\"volumes\": [{\"procedural\": \"sphere\", \"resolution\": 8, \"translate\": [1e300, 0, 0]}]}\n");
+        writeText(dir / "literal.json", "{\"camera\": {\"x\": tru}}\n");
         writeText(dir / "range.json", "{\n  \"volumes\": [ { \"procedural\": \"sphere\", \"resolution\": 2 } ]\n}\n");
     }
     // $D: the test's folder; $O: the output path the test passes with -o.
@@ -92,7 +117,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"UnknownBuiltin", "builtin:teapot", "unknown built-in scene 'builtin:teapot'"},
         BadInputCase{"UnknownInputKind", "$D/scene.txt", "expected a scene .json, a .vdb, .obj or .ply file"},
         BadInputCase{"UnknownSceneKey", "$D/bad.json", "bad.json:3:3: unknown key 'camra' in scene; valid keys: camera"},
-        BadInputCase{"SceneSyntax", "$D/syntax.json", "syntax.json:4:3: JSON syntax error"},
+        BadInputCase{"SceneSyntax", "$D/syntax.json", "syntax.json:4:3: JSON syntax error: in a value: unexpected ']'; expected '[', '{', or a literal"},
+        BadInputCase{"SceneBadLiteral", "$D/literal.json", "literal.json:1:21: JSON syntax error: in a value: invalid literal at '"},
         BadInputCase{"SceneValueRange", "$D/range.json", "range.json:2:56: volume.resolution = 2 is outside [4, 1024]"},
         BadInputCase{"StatsOverwritesOutput", "builtin:sphere --res 8x8 --stats $O", "--stats names the same file as -o"},
         BadInputCase{"PreviewOverwritesStats", "builtin:sphere --res 8x8 --preview $D/p.png --stats $D/p.png", "--stats names the same file as --preview"},
@@ -116,6 +142,23 @@ INSTANTIATE_TEST_SUITE_P(
         BadInputCase{"ImageAboveMaxMemory", "builtin:sphere --res 1024x1024 --max-memory 0.01",
                      "above the 0.01 GiB limit (--max-memory GiB"},
         BadInputCase{"BadSpp", "builtin:sphere --spp 0", "--spp 0 is outside"},
+        BadInputCase{"ObjVertexBeyondTheWorld", "$D/far.obj --res 8x8", "mesh 0 spans (-1, -1, 0) to (1.188e+23, 1, 0), beyond the +-1e+12 scene units"},
+        BadInputCase{"PlyVertexBeyondTheWorld", "$D/far.ply --res 8x8 --technique mesh.pathtrace", "beyond the +-1e+12 scene units"},
+        BadInputCase{"CameraBeyondTheWorld", "$D/far_eye.json --res 8x8", "the camera's eye lies at (0, 0, 1e+19), beyond the +-1e+12"},
+        BadInputCase{"PointLightBeyondTheWorld", "$D/far_light.json --res 8x8", "light 0's position lies at (0, 2e+12, 0)"},
+        BadInputCase{"VolumeBeyondTheWorld", "$D/far_volume.json --res 8x8", "volume 0 ('procedural:sphere') spans"},
+        BadInputCase{"VoxelsTooLargeAsPlaced", "$D/huge_voxels.json --res 8x8", "as placed is outside [1e-08, 1e+08] scene units"},
+        BadInputCase{"PlacementTooSmall", "$D/tiny_voxels.json --res 8x8", "the placement makes the volume's transform singular"},
+        BadInputCase{"MtlExponentBeyondFloat", "$D/shiny.obj --res 8x8", "material 'shiny': Ns inf is outside [0, 1e+06]"},
+        BadInputCase{"MtllibIsAFifo", "$D/piped.obj --res 8x8", "material file '"},
+        BadInputCase{"FilterRadiusAHairWide", "builtin:sphere --res 8x8 --set filter_radius=1e-300", "filter_radius 1e-300 is narrower than 0.01 pixels"},
+        BadInputCase{"SeedJustPastTheRange", "builtin:sphere --res 8x8 --seed 9007199254740993", "9007199254740993"},
+        BadInputCase{"CameraCheckedBeforeAnyVolumeLoads", "$D/late_camera.json --res 8x8", "camera.up must not be parallel"},
+        BadInputCase{"LaterVolumeKeysCheckedBeforeAnyLoads", "$D/late_key.json --res 8x8", "unknown key 'scael' in volume"},
+        BadInputCase{"NestingBounded", "$D/deep.json --res 8x8", "deep.json:1:257: JSON nested deeper than 256 levels"},
+        BadInputCase{"SceneAboveMaxMemoryBeforeLoading", "$D/many_volumes.json --res 8x8 --max-memory 1",
+                     "needs about 7.81 GiB to load (estimated from its files before reading them), above the 1 GiB limit"},
+        BadInputCase{"TranslateBeyondTheWorld", "$D/far_translate.json --res 8x8", "translate must lie within +-1e+12 scene units"},
         BadInputCase{"OutputFolderMissing", "builtin:sphere --res 8x8 --preview $D/nofolder/p.png", "folder '"}),
     [](const auto& info) { return std::string(info.param.name); });
 

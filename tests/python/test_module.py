@@ -4,9 +4,11 @@ same parameter tables, the same metrics and the same one-line errors.
     PYTHONPATH=build/bin WEFT=build/bin/weft /usr/bin/python3 -m unittest test_module   (ctest: python_module)
 """
 import os
+import signal
 import subprocess
 import tempfile
 import threading
+import time
 import unittest
 
 import numpy as np
@@ -139,6 +141,44 @@ class SameAsTheCommand(unittest.TestCase):
         self.assertFalse(os.path.exists(folder))
         with self.assertRaisesRegex(weft.Error, "smoke_small.vdb"):
             weft.load_scene(scene, base_dir=self.tmp.name)  # relative to a folder without it
+
+
+    def test_bad_values_are_refused_in_weft_words(self):
+        scene = {"volumes": [{"file": "smoke_small.vdb", "translate": [0, float("nan"), 0]}]}
+        with self.assertRaises(weft.Error) as caught:
+            weft.load_scene(scene, base_dir=os.path.join(ROOT, "data"))
+        self.assertIn("scene['volumes'][0]['translate'][1] is nan", str(caught.exception))
+        with self.assertRaises(weft.Error) as caught:
+            weft.load_scene({"volumes": [{"procedural": "sphere", "scael": 2}]})
+        self.assertIn("the scene dict: unknown key 'scael'", str(caught.exception))
+        self.assertNotIn("weft-scene-", str(caught.exception))
+        empty = np.zeros((0, 0, 4), np.float32)
+        with self.assertRaisesRegex(weft.Error, r"empty \(0x0\)"):
+            weft.diff(empty, empty)
+        s = weft.load_scene(SMOKE)
+        for seed in (2**53 + 1, 2**63):
+            with self.assertRaisesRegex(weft.Error, "outside"):
+                s.render(res=(8, 8), seed=seed)
+        self.assertEqual(s.render(res=(8, 8), seed=2**53).pixels.shape[:2], (8, 8))
+
+
+    def test_ctrl_c_cancels_a_render_and_raises(self):
+        # SIGALRM raising KeyboardInterrupt stands for Ctrl-C. The render asked
+        # for takes minutes; the exception must arrive long before it ends.
+        def interrupt(signum, frame):
+            raise KeyboardInterrupt
+        previous = signal.signal(signal.SIGALRM, interrupt)
+        s = weft.load_scene(SMOKE)
+        try:
+            signal.setitimer(signal.ITIMER_REAL, 0.3)
+            start = time.monotonic()
+            with self.assertRaises(KeyboardInterrupt):
+                s.render(res=(512, 512), spp=1024, params={"step": 0.05})
+            self.assertLess(time.monotonic() - start, 5.0)
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, previous)
+        self.assertEqual(s.render(res=(8, 8)).pixels.shape[:2], (8, 8))  # the scene renders on
 
 
 if __name__ == "__main__":

@@ -89,4 +89,11 @@ TEST(ErrorText, PrintableLineEscapesRawBytesAndKeepsUtf8) {
     EXPECT_EQ(weft::printableLine(std::string("bytes \x01\x9f\xff end", 13)), "bytes \\x01\\x9F\\xFF end");
     EXPECT_EQ(weft::printableLine("caf\xc3\xa9 \xe2\x82\xac"), "caf\xc3\xa9 \xe2\x82\xac");  // valid UTF-8 stays
     EXPECT_EQ(weft::printableLine("cut \xe2\x82"), "cut \\xE2\\x82");                      // a cut sequence does not
+    // Lead bytes no UTF-8 has, overlong forms, surrogates and code points past U+10FFFF are escaped.
+    EXPECT_EQ(weft::printableLine("\xf5\x80\x80"), "\\xF5\\x80\\x80");
+    EXPECT_EQ(weft::printableLine("\xff\xbf\xbf"), "\\xFF\\xBF\\xBF");
+    EXPECT_EQ(weft::printableLine("\xe0\x80\xaf"), "\\xE0\\x80\\xAF");
+    EXPECT_EQ(weft::printableLine("\xed\xa0\x80"), "\\xED\\xA0\\x80");
+    EXPECT_EQ(weft::printableLine("\xf4\x90\x80\x80"), "\\xF4\\x90\\x80\\x80");
+    EXPECT_EQ(weft::printableLine("\xf0\x9f\x98\x80"), "\xf0\x9f\x98\x80");  // U+1F600 stays
 }
