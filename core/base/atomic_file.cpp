@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <fcntl.h>
 #include <limits.h>
 #include <signal.h>
@@ -92,7 +94,17 @@ bool isStreamTarget(const std::string& path) {
     return ::stat(path.c_str(), &st) == 0 && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode));
 }
 
-void writeToStream(const std::string& path, const std::string& text, const std::string& what) {
+// Streams opened when their output was checked, before the render: a FIFO
+// nobody reads is refused then, not after the other outputs are written;
+// one that is read stays open (closing it would end the reader's input).
+std::mutex openStreamsMutex;
+std::map<std::string, int> openStreams;
+
+int openStream(const std::string& path, const std::string& what) {
+    {
+        std::lock_guard lock(openStreamsMutex);
+        if (const auto it = openStreams.find(path); it != openStreams.end()) return it->second;
+    }
     // Non-blocking open: a FIFO nobody reads fails at once instead of hanging.
     const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
@@ -100,6 +112,16 @@ void writeToStream(const std::string& path, const std::string& text, const std::
         throw Error(what + " '" + path + "': " + (err == ENXIO ? "a FIFO that nobody reads" : std::strerror(err)));
     }
     ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    std::lock_guard lock(openStreamsMutex);
+    return openStreams.emplace(path, fd).first->second;
+}
+
+void writeToStream(const std::string& path, const std::string& text, const std::string& what) {
+    const int fd = openStream(path, what);
+    {
+        std::lock_guard lock(openStreamsMutex);
+        openStreams.erase(path);
+    }
     std::size_t done = 0;
     while (done < text.size()) {
         const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -126,6 +148,13 @@ void removeTemporaryOutputsOnInterrupt() {
 
 AtomicOutput::AtomicOutput(std::string finalPath) : final_(std::move(finalPath)) {
     checkOutputTarget(final_, "output", OutputKind::File);
+    // Through a symbolic link, the file it names is replaced (as cp writes
+    // through it): renaming over the link itself would replace the link.
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(final_, ec))) {
+        const fs::path target = fs::weakly_canonical(final_, ec);
+        if (!ec) final_ = target.string();
+    }
     const fs::path p(final_);
     removeStaleTemps(p);
     // The extension stays last so image writers pick the right format.
@@ -161,7 +190,7 @@ void writeTextAtomically(const std::string& path, const std::string& text, const
 
 void checkOutputPath(const std::string& path, const std::string& what, OutputKind kind) {
     if (path.empty()) throw Error(what + ": no output path given");
-    if (kind == OutputKind::Text && isStreamTarget(path)) return;  // written into, in whatever folder
+    if (kind == OutputKind::Text && isStreamTarget(path)) return (void)openStream(path, what);  // written into, in whatever folder
     const fs::path p(path);
     const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     std::error_code ec;

@@ -77,8 +77,19 @@ void writeExr(const Image& image, const std::string& path, const Metadata& metad
     out.commit();
 }
 
+// Formats read as images. Others (a .vdb, a scene) are refused before the
+// codec sees them: OpenImageIO's OpenVDB reader aborted the process on a
+// grid OpenVDB itself asserts on.
+bool isImagePath(const std::string& path) {
+    static const char* const kImages[] = {".exr", ".png", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".tga", ".bmp", ".ppm", ".pfm", ".dpx"};
+    const std::string ext = lowerExtension(path);
+    return std::any_of(std::begin(kImages), std::end(kImages), [&](const char* e) { return ext == e; });
+}
+
 Image readImage(const std::string& path, Metadata* metadata, ImageWindow* window) {
     requireRegularFile(path, "image");
+    if (!isImagePath(path))
+        throw Error("image '" + path + "': not an image file weft reads (.exr, .png, .jpg, .tif, .hdr, .tga, .bmp, .ppm, .pfm, .dpx)");
     ImageFileSpec spec;
     std::vector<float> pixels;
     const bool exr = lowerExtension(path) == ".exr";

@@ -106,11 +106,23 @@ TEST(OutputSafety, StatsGoIntoACharacterDeviceAndAFifoIsNeverReplaced) {
     const CommandResult image = runWeft(base + "-o " + (dir / "pipe.exr").string());
     EXPECT_NE(image.status, 0);
     EXPECT_NE(image.output.find("is a device, FIFO or socket"), std::string::npos) << image.output;
-    const CommandResult unread = runWeft(base + "--stats " + (dir / "pipe.json").string());
+    // Refused before the render: no other output of the run is written.
+    const CommandResult unread = runWeft(base + "--stats " + (dir / "pipe.json").string() + " -o " + (dir / "x.exr").string());
     EXPECT_NE(unread.status, 0);
     EXPECT_NE(unread.output.find("a FIFO that nobody reads"), std::string::npos) << unread.output;
+    EXPECT_FALSE(fs::exists(dir / "x.exr"));
     EXPECT_TRUE(fs::is_fifo(dir / "pipe.exr"));
     EXPECT_TRUE(fs::is_fifo(dir / "pipe.json"));
+}
+
+TEST(OutputSafety, AnOutputThroughALinkReplacesWhatTheLinkNamesAndKeepsTheLink) {
+    TempDir dir;
+    writeText(dir / "old.json", "old stats");
+    fs::create_symlink("old.json", dir / "link.json");
+    const CommandResult r = runWeft("render builtin:sphere --res 8x8 --stats " + (dir / "link.json").string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
+    EXPECT_NE(readBytes(dir / "old.json").find("\"counters\""), std::string::npos);
 }
 
 TEST(OutputSafety, ALegalLongNameRendersAndAnIllegalOneFailsBeforeTheRender) {

@@ -53,6 +53,11 @@ TEST(SceneLoad, FifosAsBatchOrRuleAreRefusedAtOnce) {
     const CommandResult rule = runWeft("diff " + (dir / "a.exr").string() + " " + (dir / "a.exr").string() + " --rule " + (dir / "pipe").string());
     EXPECT_NE(rule.status, 0);
     EXPECT_NE(rule.output.find("is a FIFO"), std::string::npos) << rule.output;
+    // A volume is no image: OpenImageIO's OpenVDB reader aborted on one OpenVDB asserts on.
+    const std::string vdb = std::string(WEFT_SOURCE_DIR) + "/data/smoke_small.vdb";
+    const CommandResult notImage = runWeft("diff " + vdb + " " + vdb);
+    EXPECT_EQ(notImage.status, 1) << notImage.output;
+    EXPECT_NE(notImage.output.find("not an image file weft reads"), std::string::npos) << notImage.output;
 }
 
 }  // namespace

@@ -256,9 +256,12 @@ def run_one(index, seed, good_exr, params, hang):
         result = {"kind": kind, "cmd": "weft " + " ".join(args), "crash": code is not None and code < 0, "hang": code is None,
                   "slow_refusal": code not in (0, None) and seconds > 2, "library_text": any(t in err for t in LIBRARY_TEXT),
                   "lost": False, "partial": False, "err": err.strip()[-300:]}
+        # An output replaces the file it names, through a link as cp writes: not a loss.
+        named = {os.path.normpath(o) for o in outputs} | {os.path.relpath(os.path.realpath(os.path.join(d, o)), os.path.realpath(d))
+                                                          for o in outputs}
         for rel, (digest, _) in before.items():
             p = os.path.join(d, rel)
-            written = rel in outputs or os.path.normpath(rel) in [os.path.normpath(o) for o in outputs]
+            written = os.path.normpath(rel) in named
             if written:
                 continue
             if not os.path.exists(p) or sha(p) != digest:
@@ -270,7 +273,7 @@ def run_one(index, seed, good_exr, params, hang):
         if code not in (0, None):
             for o in outputs:
                 p = os.path.join(d, o)
-                if os.path.normpath(o) not in before and os.path.exists(p) and stat.S_ISREG(os.stat(p).st_mode):
+                if os.path.normpath(o) not in kinds and os.path.exists(p) and stat.S_ISREG(os.stat(p).st_mode):
                     result["partial"] = True
         return result
     finally:
