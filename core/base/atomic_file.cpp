@@ -207,7 +207,8 @@ void checkOutputTarget(const std::string& path, const std::string& what, OutputK
                     std::to_string(kNameMax) + " a file system allows");
     if (path.size() >= PATH_MAX) throw Error(what + " '" + path.substr(0, 64) + "...': the path is longer than the system allows");
     struct stat st {};
-    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode) && !(kind == OutputKind::Text && isStreamTarget(path)))
+    const bool exists = ::stat(path.c_str(), &st) == 0, stream = exists && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode));
+    if (exists && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode) && !(kind == OutputKind::Text && stream))
         throw Error(what + " '" + path + "' is a device, FIFO or socket; give a regular file (text outputs such as --stats "
                     "may go to a FIFO or a terminal)");
     refuseInputAsOutput(path, what);

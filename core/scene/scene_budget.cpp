@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include "core/base/error.hpp"
 #include "core/base/input_file.hpp"
@@ -18,7 +19,40 @@ constexpr double kLeafValues = 512, kLeafOverhead = 160;
 // position; a binary PLY triangle of 13 bytes: ~110 bytes with its BVH node).
 constexpr double kMeshBytesPerFileByte = 10;
 
+// Ignores what it cannot estimate: the loader then reports it with its position.
+template <class F>
+double estimateOrZero(F&& estimate) {
+    try {
+        return estimate();
+    } catch (const std::exception&) {
+        return 0;
+    }
+}
+
 }  // namespace
+
+double sceneFileLoadBytes(const nlohmann::json& root, const std::function<std::string(const std::string&)>& volumeFile,
+                          const std::function<std::string(const std::string&)>& meshFile) {
+    namespace fs = std::filesystem;
+    double bytes = 0;
+    std::set<std::string> files;
+    if (root.contains("volumes") && root["volumes"].is_array())
+        for (const nlohmann::json& v : root["volumes"]) {
+            if (v.contains("file") && v["file"].is_string()) {
+                const std::string file = volumeFile(v["file"].get<std::string>());
+                std::error_code ec;
+                if (files.insert(fs::weakly_canonical(file, ec).string()).second) bytes += estimateOrZero([&] { return vdbLoadBytes(file); });
+            } else if (v.contains("procedural") && v["procedural"].is_string()) {
+                const int res = v.contains("resolution") && v["resolution"].is_number() ? int(v["resolution"].get<double>()) : 128;
+                bytes += proceduralLoadBytes(res, v["procedural"].get<std::string>());
+            }
+        }
+    if (root.contains("meshes") && root["meshes"].is_array())
+        for (const nlohmann::json& m : root["meshes"])
+            if (m.contains("file") && m["file"].is_string())
+                bytes += estimateOrZero([&] { return meshLoadBytes(meshFile(m["file"].get<std::string>())); });
+    return bytes;
+}
 
 double vdbLoadBytes(const std::string& path) {
     requireRegularFile(path, "volume");

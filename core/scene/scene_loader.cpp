@@ -15,8 +15,8 @@
 #include "core/base/render_options.hpp"
 #include "core/scene/placement.hpp"
 #include "core/scene/scene_budget.hpp"
+#include "core/scene/world_range.hpp"
 #include "core/scene/scene.hpp"
-#include "core/base/world_limit.hpp"
 #include "core/volume/volume_grids.hpp"
 
 namespace fs = std::filesystem;
@@ -85,61 +85,6 @@ private:
 };
 
 constexpr double kHuge = 1e30;
-
-bool withinWorld(const Vec3d& p) {
-    return std::abs(p.x()) <= kWorldLimit && std::abs(p.y()) <= kWorldLimit && std::abs(p.z()) <= kWorldLimit;
-}
-
-// A box never expanded (min above max) holds nothing; a flat one (a single
-// triangle) does, though OpenVDB calls it empty.
-bool withinWorld(const BBoxd& box) {
-    const bool unset = box.min().x() > box.max().x() || box.min().y() > box.max().y() || box.min().z() > box.max().z();
-    return unset || (withinWorld(box.min()) && withinWorld(box.max()));
-}
-
-void requireWithinWorld(const std::string& what, const Vec3d& p) {
-    if (withinWorld(p)) return;
-    char text[200];
-    std::snprintf(text, sizeof text, " lies at (%g, %g, %g), beyond the +-%g scene units weft renders in", p.x(), p.y(), p.z(), kWorldLimit);
-    throw Error(what + text);
-}
-
-// Refuses a scene that reaches beyond kWorldLimit, naming the first item that does.
-void requireSceneWithinWorld(const Scene& scene) {
-    const auto boxText = [](const BBoxd& b) {
-        char text[240];
-        std::snprintf(text, sizeof text, " spans (%g, %g, %g) to (%g, %g, %g), beyond the +-%g scene units weft renders in", b.min().x(),
-                      b.min().y(), b.min().z(), b.max().x(), b.max().y(), b.max().z(), kWorldLimit);
-        return std::string(text);
-    };
-    for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
-        if (!scene.volumes[i].grid) continue;
-        const Vec3d voxel = scene.volumes[i].grid->voxelSize();
-        if (!(voxel.x() >= kMinVoxelSize && voxel.y() >= kMinVoxelSize && voxel.z() >= kMinVoxelSize && voxel.x() <= kMaxVoxelSize &&
-              voxel.y() <= kMaxVoxelSize && voxel.z() <= kMaxVoxelSize)) {
-            char text[200];
-            std::snprintf(text, sizeof text, "'): voxel size (%g, %g, %g) as placed is outside [%g, %g] scene units", voxel.x(), voxel.y(),
-                          voxel.z(), kMinVoxelSize, kMaxVoxelSize);
-            throw Error("volume " + std::to_string(i) + " ('" + scene.volumes[i].source + text);
-        }
-    }
-    for (std::size_t i = 0; i < scene.volumes.size(); ++i)
-        if (!withinWorld(scene.volumes[i].worldBox()))
-            throw Error("volume " + std::to_string(i) + " ('" + scene.volumes[i].source + "')" + boxText(scene.volumes[i].worldBox()) +
-                        " (is its voxel size, scale or translate too large?)");
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
-        if (!withinWorld(scene.meshes[i].bounds()))
-            throw Error("mesh " + std::to_string(i) + boxText(scene.meshes[i].bounds()) + " (is a vertex, its scale or translate too large?)");
-    requireWithinWorld("the camera's eye", scene.camera.eye);
-    requireWithinWorld("the camera's target", scene.camera.target);
-    for (const auto& [f, cam] : scene.cameraPath.keys) {
-        requireWithinWorld("the camera key at frame " + formatNumber(f) + ": its eye", cam.eye);
-        requireWithinWorld("the camera key at frame " + formatNumber(f) + ": its target", cam.target);
-    }
-    for (std::size_t i = 0; i < scene.lights.size(); ++i)
-        if (scene.lights[i].type == LightType::Point) requireWithinWorld("light " + std::to_string(i) + "'s position", scene.lights[i].position);
-}
-
 
 Camera readCamera(const ObjectReader& r, const Camera& defaults = Camera{}) {
     Camera cam;
@@ -245,7 +190,7 @@ VolumeMedium readMedium(const ObjectReader& r) {
     return m;
 }
 
-// A path of the scene: relative to its folder; "#" names the frame.
+// A path of the scene: relative to its folder; "#" names the frame (volume files only).
 fs::path scenePath(const std::string& text, const fs::path& baseDir, std::optional<int> frame) {
     fs::path file = frame ? expandFrameName(text, *frame) : text;
     return file.is_relative() ? baseDir / file : file;
@@ -469,8 +414,7 @@ Volume readVolume(const ObjectReader& r, const fs::path& baseDir, std::optional<
 
 void readMesh(const ObjectReader& r, const fs::path& baseDir, Scene& scene) {
     if (!r.has("file")) r.failAt(r.pointer(), "a mesh needs a 'file' (.obj or .ply)");
-    fs::path file = r.string("file", "");
-    if (file.is_relative()) file = baseDir / file;
+    const fs::path file = scenePath(r.string("file", ""), baseDir, std::nullopt);
     const int level = int(r.number("subdivision", 0, 0, 8));
     if (r.has("subdivision") && !r.value()["subdivision"].is_number_integer()) r.fail("subdivision", "mesh.subdivision must be an integer level in [0, 8]");
     const Placement placement = readPlacement(r);
@@ -541,43 +485,6 @@ void settleMotion(Scene& scene) {
     }
 }
 
-// Ignores what it cannot estimate: the loader then reports it with its position.
-template <class F>
-double estimateOrZero(F&& estimate) {
-    try {
-        return estimate();
-    } catch (const std::exception&) {
-        return 0;
-    }
-}
-
-// What the scene's volumes and meshes will take once loaded (scene_budget.hpp);
-// a file named by several volumes counts once, as it loads once.
-double jsonSceneLoadBytes(const JsonDoc& doc, const fs::path& baseDir, std::optional<int> frame) {
-    const json& root = doc.root();
-    double bytes = 0;
-    std::set<std::string> files;
-    if (root.contains("volumes") && root["volumes"].is_array())
-        for (const json& v : root["volumes"]) {
-            if (v.contains("file") && v["file"].is_string()) {
-                const fs::path file = scenePath(v["file"].get<std::string>(), baseDir, frame);
-                std::error_code ec;
-                if (files.insert(fs::weakly_canonical(file, ec).string()).second) bytes += estimateOrZero([&] { return vdbLoadBytes(file.string()); });
-            } else if (v.contains("procedural") && v["procedural"].is_string()) {
-                const int res = v.contains("resolution") && v["resolution"].is_number() ? int(v["resolution"].get<double>()) : 128;
-                bytes += proceduralLoadBytes(res, v["procedural"].get<std::string>());
-            }
-        }
-    if (root.contains("meshes") && root["meshes"].is_array())
-        for (const json& m : root["meshes"])
-            if (m.contains("file") && m["file"].is_string()) {
-                fs::path file = m["file"].get<std::string>();
-                if (file.is_relative()) file = baseDir / file;
-                bytes += estimateOrZero([&] { return meshLoadBytes(file.string()); });
-            }
-    return bytes;
-}
-
 Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::optional<int> frame, double limitBytes) {
     const JsonDoc doc = JsonDoc::load(path);
     ObjectReader top(doc, "", "scene", {"camera", "volumes", "meshes", "lights", "render"});
@@ -598,7 +505,9 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
     const auto meshAt = [&](const std::string& p) { return ObjectReader(doc, p, "mesh", {"file", "subdivision", "scale", "rotate", "translate"}); };
     if (top.has("volumes")) forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) { checkVolumeSettings(volumeAt(p)); });
     if (top.has("meshes")) forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) { readPlacement(meshAt(p)); });
-    requireLoadWithin(jsonSceneLoadBytes(doc, baseDir, frame), limitBytes, "scene '" + path + "'");
+    requireLoadWithin(sceneFileLoadBytes(doc.root(), [&](const std::string& f) { return scenePath(f, baseDir, frame).string(); },
+                                         [&](const std::string& f) { return scenePath(f, baseDir, std::nullopt).string(); }),
+                      limitBytes, "scene '" + path + "'");
     LoadedGrids loaded;
     if (top.has("volumes"))
         forEachInArray(doc, "/volumes", "volumes", [&](const std::string& p) { scene.volumes.push_back(readVolume(volumeAt(p), baseDir, frame, loaded)); });

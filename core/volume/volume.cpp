@@ -88,16 +88,9 @@ void loadLeavesInParallel(const openvdb::GridBase::Ptr& base, const std::string&
     const VdbGridLayout* layout = nullptr;
     if (file)
         if (const auto it = file->grids.find(stored); it != file->grids.end()) layout = &it->second;
-    try {
-        loadLeaves(base, path, file, layout);
-    } catch (...) {
-        // A leaf whose bytes failed to decode is left half loaded (still
-        // marked out of core over its new buffer), and destroying it would
-        // free that buffer as OpenVDB's file record: the grid is kept, never
-        // destroyed (a few leaves' worth of memory per corrupt file).
-        new openvdb::GridBase::Ptr(base);
-        throw;
-    }
+    // A leaf that fails to decode is left as it was (vdb_leaf_reader.cpp
+    // decodes into a leaf of its own), so the grid is destroyed safely.
+    loadLeaves(base, path, file, layout);
 }
 
 // The grid `gridName` of a .vdb whose value type `accepts` takes;

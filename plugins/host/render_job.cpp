@@ -186,9 +186,11 @@ void validateRequest(const RenderRequest& r) {
     checkRenderNumber("threads", r.threads, kOnCommandLine);
     checkRenderNumber("max-memory", r.maxMemoryGiB, kOnCommandLine);
     if (r.spp) checkRenderNumber("spp", *r.spp, kOnCommandLine);
-    // Exactly, not through a double (2^53 + 1 would read as 2^53); the table's range is [0, 2^53].
-    if (r.seed && *r.seed > (std::uint64_t(1) << 53))
-        throw Error("seed " + std::to_string(*r.seed) + " is outside [0, 9007199254740992]");
+    // Against the table's range exactly, not through a double (2^53 + 1 would read as 2^53).
+    if (const RenderOption* seed = findRenderOption("seed", kOnCommandLine); r.seed && seed) {
+        const std::string text = std::to_string(*r.seed);
+        if (integerOutOfRange(text, seed->spec)) throw Error(seed->label(kOnCommandLine) + " " + text + " is outside " + seed->spec.allowedText());
+    }
     if (r.resolution) {
         const auto [w, h] = parseResolution(*r.resolution);
         checkMemory(r, w, h, r.technique.value_or(defaultTechnique(r.sets)), 0);
