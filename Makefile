@@ -1,5 +1,5 @@
 # Convenience targets; the scripts are what the README and CI run.
-.PHONY: all demo test test-slow test-sanitize fuzz bench trade clean
+.PHONY: all demo test test-slow test-sanitize test-tsan fuzz bench trade clean
 FUZZ_SECONDS ?= 60
 FUZZ_RUNS ?= -1
 all:
@@ -12,6 +12,8 @@ test-slow:
 	bash scripts/test.sh --slow
 test-sanitize:
 	bash scripts/test-sanitize.sh
+test-tsan:
+	bash scripts/test-tsan.sh
 fuzz:
 	FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_RUNS=$(FUZZ_RUNS) bash scripts/fuzz.sh
 bench: all
@@ -19,4 +21,4 @@ bench: all
 trade: all
 	/usr/bin/python3 bench/trade_atlas.py
 clean:
-	rm -rf build build-sanitize out
+	rm -rf build build-sanitize build-tsan out

@@ -19,4 +19,5 @@ python3 bench/kraus_tables.py "$@"
 /usr/bin/python3 bench/python_threads.py
 /usr/bin/python3 bench/emission_cost.py
 /usr/bin/python3 bench/scene_load.py
+/usr/bin/python3 bench/cancel_latency.py
 /usr/bin/python3 bench/headlines.py "$WEFT_BENCH_HEADLINES"

@@ -1,5 +1,5 @@
 // Linked into the executables of sanitized builds only (cmake/Sanitize.cmake).
-// Under AddressSanitizer, operator new aborts the process when a request is
+// Under AddressSanitizer (and ThreadSanitizer), operator new aborts the process when a request is
 // too large instead of throwing std::bad_alloc, so a corrupt file that makes
 // a library (OpenVDB's blosc reader, say) ask for 8 EB would end a sanitized
 // run that a normal build survives: glibc refuses it, the exception reaches

@@ -10,20 +10,24 @@
 
 #include <tbb/global_control.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <future>
 #include <cctype>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/base/error.hpp"
+#include "core/base/render_monitor.hpp"
 #include "core/image/image_compare.hpp"
 #include "core/image/image_io.hpp"
 #include "core/scene/scene.hpp"
@@ -109,6 +113,31 @@ py::dict metricsOf(const ChannelError& e) {
     return d;
 }
 
+// A render's monitor on the Python side: the render's threads queue their
+// progress reports; the calling thread, holding the GIL, hands them to the
+// script's callback between its waits. A callback that returns False (or
+// raises), Ctrl-C or any signal handler that raises interrupts the render.
+class PyRenderMonitor : public RenderMonitor {
+public:
+    void progress(std::string_view pass, double fraction) override {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (reports_.size() >= kMaxQueued) reports_.pop_front();  // a callback that lags sees the latest
+        reports_.emplace_back(std::string(pass), fraction);
+    }
+    bool interrupted() override { return stop_.load(std::memory_order_relaxed); }
+    void stop() { stop_.store(true, std::memory_order_relaxed); }
+    std::deque<std::pair<std::string, double>> take() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return std::exchange(reports_, {});
+    }
+
+private:
+    static constexpr std::size_t kMaxQueued = 1024;
+    std::mutex mutex_;
+    std::deque<std::pair<std::string, double>> reports_;
+    std::atomic<bool> stop_{false};
+};
+
 // Loads once per framing (the image's aspect) and frame, and renders the
 // loaded scene as often as asked: a procedural or large scene is not
 // rebuilt per render. A reused scene's "load" timing is 0.
@@ -119,7 +148,8 @@ public:
     }
 
     RenderResult render(std::optional<std::string> technique, const py::dict& params, std::optional<std::pair<int, int>> res,
-                        std::optional<int> spp, std::optional<std::uint64_t> seed, int threads, std::optional<int> frame) const {
+                        std::optional<int> spp, std::optional<std::uint64_t> seed, int threads, std::optional<int> frame,
+                        const py::object& progress) const {
         RenderRequest r = request();
         r.technique = std::move(technique);
         for (const auto& [k, v] : params) r.sets.push_back(py::str(k).cast<std::string>() + "=" + py::str(v).cast<std::string>());
@@ -128,42 +158,55 @@ public:
         r.seed = seed;
         r.threads = threads;
         r.frame = frame;
-        const RenderOutcome out = renderInterruptibly(r);
+        const RenderOutcome out = renderInterruptibly(r, progress);
         return {std::move(out.image), std::move(out.counters), std::move(out.timingsMs), std::move(out.metadata)};
     }
     const std::string& path() const { return file_->path(); }
 
     // The render runs on a thread of its own while this one, holding the GIL
-    // a moment every 50 ms, lets Python run its signal handlers: Ctrl-C (or
-    // any handler that raises) cancels the render at its next row and the
-    // exception reaches the caller. Called with the GIL held.
-    RenderOutcome renderInterruptibly(RenderRequest r) const {
-        CancelFlag cancel;
-        r.cancel = &cancel;
+    // a moment every 50 ms, passes its progress to `progress` (when not
+    // None) and lets Python run its signal handlers. Ctrl-C, a handler or
+    // callback that raises, or a callback that returns False interrupts the
+    // render at its next row or pass; the exception (weft.Cancelled for the
+    // False) reaches the caller. Called with the GIL held.
+    RenderOutcome renderInterruptibly(RenderRequest r, const py::object& progress) const {
+        PyRenderMonitor monitor;
+        r.monitor = &monitor;
         std::future<RenderOutcome> result = std::async(std::launch::async, [&] {
             validateRequest(r);
             tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, effectiveThreads(r.threads));
             return renderLoadedScene(r, loaded(r));
         });
-        bool interrupted = false;
+        std::optional<py::error_already_set> raised;  // by a signal handler or the callback
+        auto report = [&] {
+            for (const auto& [pass, fraction] : monitor.take()) {
+                if (raised || progress.is_none()) continue;
+                try {
+                    const py::object answer = progress(pass, fraction);
+                    if (py::isinstance<py::bool_>(answer) && !answer.cast<bool>()) monitor.stop();
+                } catch (py::error_already_set& e) {
+                    raised.emplace(std::move(e)), monitor.stop();
+                }
+            }
+        };
         for (;;) {
             std::future_status status;
             {
                 py::gil_scoped_release release;
                 status = result.wait_for(std::chrono::milliseconds(50));
             }
+            report();
             if (status == std::future_status::ready) break;
-            if (!interrupted && PyErr_CheckSignals() != 0) interrupted = true, cancel.requested = true;
+            if (!raised && PyErr_CheckSignals() != 0) raised.emplace(), monitor.stop();
         }
-        if (interrupted) {
+        if (raised) {
             try {
                 result.get();  // Cancelled, or what failed first
-            } catch (const Cancelled&) {
             } catch (...) {
             }
-            throw py::error_already_set();  // the handler's exception: KeyboardInterrupt for Ctrl-C
+            throw std::move(*raised);  // KeyboardInterrupt for Ctrl-C, or the callback's exception
         }
-        return result.get();
+        return result.get();  // weft.Cancelled when the callback said False
     }
 
 private:
@@ -256,9 +299,12 @@ PYBIND11_MODULE(weft, m) {
     m.doc() = "weft: render OpenVDB volumes and meshes with weft's sampling techniques (the same renders as the weft command)";
     m.attr("__version__") = WEFT_VERSION;
     static py::exception<Error> error(m, "Error");
+    static py::exception<Cancelled> cancelled(m, "Cancelled", error.ptr());
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const Cancelled& e) {
+            cancelled(e.what());
         } catch (const Error& e) {
             error(e.what());
         }
@@ -285,9 +331,10 @@ PYBIND11_MODULE(weft, m) {
         .def_property_readonly("path", &PyScene::path)
         .def("render", &PyScene::render, py::arg("technique") = py::none(), py::arg("params") = py::dict(),
              py::arg("res") = py::none(), py::arg("spp") = py::none(), py::arg("seed") = py::none(), py::arg("threads") = 0,
-             py::arg("frame") = py::none(),
+             py::arg("frame") = py::none(), py::arg("progress") = py::none(),
              "render one frame, as `weft render` would: technique and params (--set) override the scene's render block; "
-             "res=(w, h); threads=0 uses every core. The GIL is released while it renders.");
+             "res=(w, h); threads=0 uses every core. progress(pass, fraction) is called as the render advances; returning "
+             "False cancels it (weft.Cancelled). The GIL is released while it renders; Ctrl-C cancels it.");
 
     m.def("load_scene", &loadScenePy, py::arg("source"), py::arg("grid") = "", py::arg("base_dir") = py::none(),
           "a scene from a path (.json, .vdb, .obj, .ply, builtin:NAME) or a dict in the scene file's format "

@@ -30,18 +30,26 @@ weft_check_clang() {
   done
 }
 
-# One configuration for both the sanitized suite and the fuzzers: -O1 keeps
-# the build and the runs quick while the reports still point at lines.
-weft_configure_sanitize() {
-  weft_check_clang
+# A clang Release build at -O1 in directory $1, configured once with the
+# cmake options that follow: -O1 keeps the build and the runs quick while
+# the reports still point at lines.
+weft_configure_clang() {
+  local dir=$1
+  shift
   export CCACHE_BASEDIR="$PWD"
-  if [ ! -f "$WEFT_SANITIZE_DIR/CMakeCache.txt" ]; then
-    cmake -S . -B "$WEFT_SANITIZE_DIR" -DCMAKE_BUILD_TYPE=Release \
+  if [ ! -f "$dir/CMakeCache.txt" ]; then
+    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
       -DCMAKE_C_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" \
       -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" \
-      -DWEFT_FUZZ=ON -DWEFT_BUILD_BENCH=OFF
+      -DWEFT_BUILD_BENCH=OFF "$@"
   fi
+}
+
+# One configuration for both the sanitized suite and the fuzzers.
+weft_configure_sanitize() {
+  weft_check_clang
+  weft_configure_clang "$WEFT_SANITIZE_DIR" -DWEFT_FUZZ=ON
 }
 
 weft_jobs() { echo "${WEFT_JOBS:-$(nproc 2>/dev/null || echo 2)}"; }

@@ -9,7 +9,7 @@
 #include <mutex>
 #include <fcntl.h>
 #include <limits.h>
-#include <signal.h>
+#include <signal.h>  // kill(pid, 0): is a temporary file's writer alive
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -48,13 +48,6 @@ int claimSlot(const std::string& path) {
 
 void releaseSlot(int slot) {
     if (slot >= 0) slotUsed[std::size_t(slot)].store(false);
-}
-
-extern "C" void removeTempsAndReraise(int sig) {
-    for (std::size_t i = 0; i < kSlots; ++i)
-        if (slotUsed[i].load()) unlink(liveTemps[i].data());
-    signal(sig, SIG_DFL);
-    raise(sig);
 }
 
 constexpr std::size_t kNameMax = NAME_MAX, kPidDigits = 10;
@@ -138,12 +131,9 @@ void writeToStream(const std::string& path, const std::string& text, const std::
 
 }  // namespace
 
-void removeTemporaryOutputsOnInterrupt() {
-    struct sigaction sa {};
-    sa.sa_handler = removeTempsAndReraise;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
+void removeTemporaryOutputsNow() noexcept {
+    for (std::size_t i = 0; i < kSlots; ++i)
+        if (slotUsed[i].load()) unlink(liveTemps[i].data());
 }
 
 AtomicOutput::AtomicOutput(std::string finalPath) : final_(std::move(finalPath)) {

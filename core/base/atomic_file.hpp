@@ -26,9 +26,9 @@ private:
     int slot_ = -1;  // in the table the interrupt handler cleans
 };
 
-// SIGINT and SIGTERM remove the temporary files being written, then end the
-// process as the signal would have. The host installs this once at start.
-void removeTemporaryOutputsOnInterrupt();
+// Removes the temporary files being written, for a signal handler that is
+// about to end the process (async-signal-safe: unlink only).
+void removeTemporaryOutputsNow() noexcept;
 
 // Writes `text` to `path` through an AtomicOutput; a failed write throws
 // "<what> '<path>': write failed" and leaves no file. An existing FIFO or

@@ -2,14 +2,11 @@
 
 #include <gtest/gtest.h>
 
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <string>
-#include <vector>
 
-#include <fcntl.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -58,58 +55,6 @@ TEST(HugePages, MappingStartsOnA2MiBBoundaryIsZeroWritableAndExactlyAsLong) {
     }
     EXPECT_EQ(munmap(p, length), 0);  // unmapped as asked, as the allocator will
     EXPECT_FALSE(mapped(p));
-}
-
-TEST(HugePages, OnlyLargeAnonymousPrivateWritableRequestsSuitTheHeap) {
-    const std::size_t big = kHugePageBytes, small = kHugePageBytes - 4096;
-    EXPECT_TRUE(heapMappingSuitsHugePages(nullptr, big, kRw, kAnon, -1));
-    EXPECT_TRUE(heapMappingSuitsHugePages(nullptr, big << 10, kRw, kAnon | MAP_NORESERVE, -1));
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, small, kRw, kAnon, -1));                          // below 2 MiB
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, PROT_READ, kAnon, -1));                      // read only
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, PROT_NONE, kAnon, -1));                      // a reservation
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, kRw | PROT_EXEC, kAnon, -1));                // code
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, kRw, MAP_SHARED | MAP_ANONYMOUS, -1));       // shared
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, kRw, MAP_PRIVATE, 3));                       // a file
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, kRw, kAnon | MAP_STACK, -1));                // a thread's stack
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, kRw, kAnon | MAP_HUGETLB, -1));              // hugetlbfs already
-    EXPECT_FALSE(heapMappingSuitsHugePages(nullptr, big, kRw, kAnon | MAP_32BIT, -1));                // low addresses only
-    EXPECT_FALSE(heapMappingSuitsHugePages(reinterpret_cast<void*>(kHugePageBytes), big, kRw, kAnon | MAP_FIXED, -1));
-    EXPECT_FALSE(heapMappingSuitsHugePages(reinterpret_cast<void*>(kHugePageBytes), big, kRw, kAnon, -1));  // a hint
-}
-
-TEST(HugePages, TheHeapPutsLargeRequestsOnHugePagesAndMapsOthersAsAsked) {
-    const std::int64_t before = heapMappingsOnHugePages();
-    const std::size_t big = 3 * kHugePageBytes;
-    void* heap = mapForHeap(nullptr, big, kRw, kAnon, -1, 0);
-    ASSERT_NE(heap, MAP_FAILED);
-    EXPECT_EQ(address(heap) % kHugePageBytes, 0u);
-    EXPECT_EQ(heapMappingsOnHugePages(), before + 1);
-    EXPECT_EQ(munmap(heap, big), 0);
-
-    void* small = mapForHeap(nullptr, 8192, kRw, kAnon, -1, 0);  // as the kernel maps it
-    ASSERT_NE(small, MAP_FAILED);
-    static_cast<char*>(small)[8191] = 1;
-    EXPECT_EQ(munmap(small, 8192), 0);
-    EXPECT_EQ(heapMappingsOnHugePages(), before + 1);
-
-    // A file maps its bytes, at the offset asked.
-    char path[] = "/tmp/weft-huge-pages-XXXXXX";
-    const int fd = mkstemp(path);
-    ASSERT_GE(fd, 0);
-    std::vector<char> bytes(8192, 'a');
-    bytes[4096] = 'b';
-    ASSERT_EQ(write(fd, bytes.data(), bytes.size()), ssize_t(bytes.size()));
-    void* file = mapForHeap(nullptr, 4096, PROT_READ, MAP_PRIVATE, fd, 4096);
-    ASSERT_NE(file, MAP_FAILED);
-    EXPECT_EQ(static_cast<const char*>(file)[0], 'b');
-    EXPECT_EQ(munmap(file, 4096), 0);
-    close(fd);
-    unlink(path);
-
-    // A refusal comes back as the kernel's, errno and all.
-    errno = 0;
-    EXPECT_EQ(mapForHeap(nullptr, 4096, kRw, MAP_PRIVATE, -1, 0), MAP_FAILED);  // neither a file nor anonymous
-    EXPECT_EQ(errno, EBADF);
 }
 
 }  // namespace

@@ -99,7 +99,7 @@ FreshBuffer<T> zeroedBuffer(std::size_t n) {
     static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_copyable_v<T>);
     FreshBuffer<T> buffer(n);
     const bool large = n * sizeof(T) >= kLargeBufferBytes;
-    if (!large) std::memset(buffer.data(), 0, n * sizeof(T));
+    if (!large && n) std::memset(buffer.data(), 0, n * sizeof(T));  // an empty vector's data() may be null
     else if (!kLargeBuffersArriveZeroed || lastLargePagesReused())
         forChunksInParallel(n, [&](std::size_t i0, std::size_t i1) { std::memset(buffer.data() + i0, 0, (i1 - i0) * sizeof(T)); });
     return buffer;

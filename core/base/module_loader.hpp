@@ -12,7 +12,8 @@
 namespace weft {
 
 // Opens the module `fileName` and returns what its extern "C" function
-// `entry` (no arguments) returns, the first one `accepts` (the caller's ABI
+// `entry` (no arguments, returning `const void*`: called through exactly
+// that type) returns, the first one `accepts` (the caller's ABI
 // check). Tried in order: the path in environment variable `envVar` if set,
 // fileName beside the running executable, beside the shared object this
 // code is in (the Python module, whose executable is python3), then the

@@ -1,14 +1,14 @@
 #pragma once
 // What a technique receives besides the scene and its parameters: image
 // size, samples per pixel, seed, the counters to add to, timings of its
-// passes, and progress reporting.
+// passes, and the monitor it reports progress to and polls for interrupts.
 #include <chrono>
 #include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "core/base/cancel.hpp"
+#include "core/base/render_monitor.hpp"
 #include "core/base/counters.hpp"
 
 namespace weft {
@@ -18,34 +18,34 @@ struct RenderSettings {
     int height = 512;
     int spp = 1;
     std::uint64_t seed = 0;
-    bool showProgress = false;
     // Rows a tiled render needs, [rowBegin, rowEnd); rowEnd < 0 means all.
     // The image plane (core/sampling/image_plane.hpp) skips the others.
     int rowBegin = 0;
     int rowEnd = -1;
-    // Polled between rows (core/base/progress.hpp) and passes (ScopedTimer); null: never cancelled.
-    const CancelFlag* cancel = nullptr;
+    // Told the progress of each loop (core/base/progress.hpp) and polled
+    // between rows and passes (ScopedTimer); null: nobody watches.
+    RenderMonitor* monitor = nullptr;
 };
 
 // Named wall-clock durations of passes, in the order they ran. Every timed
-// pass starts by polling the render's cancel flag (core/base/cancel.hpp).
+// pass starts by polling the render's monitor (core/base/render_monitor.hpp).
 class Timings {
 public:
     void add(const std::string& name, double ms) { entries_.emplace_back(name, ms); }
     const std::vector<std::pair<std::string, double>>& entries() const { return entries_; }
-    const CancelFlag* cancel = nullptr;
+    RenderMonitor* monitor = nullptr;
 
 private:
     std::vector<std::pair<std::string, double>> entries_;
 };
 
 // Adds the lifetime of the scope to a Timings entry; throws Cancelled
-// instead of starting when the render was asked to stop.
+// instead of starting when the render was interrupted.
 class ScopedTimer {
 public:
     ScopedTimer(Timings& timings, std::string name)
         : timings_(timings), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {
-        throwIfCancelled(timings.cancel);
+        throwIfInterrupted(timings.monitor);
     }
     ~ScopedTimer() {
         timings_.add(name_, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());

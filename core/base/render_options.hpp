@@ -22,7 +22,7 @@
 
 namespace weft {
 
-struct CancelFlag;
+class RenderMonitor;
 
 struct RenderRequest {
     std::string input;            // scene .json, .vdb or builtin:NAME
@@ -41,7 +41,7 @@ struct RenderRequest {
     std::optional<int> frame;  // the frame a scene file is loaded at (names already expanded)
     std::string tile;          // "i/n": render only row band i of n (core/base/frames.hpp); "" = all
     double maxMemoryGiB = 0;   // refuse renders whose images alone need more; 0 = 3/4 of physical memory
-    const CancelFlag* cancel = nullptr;  // set by a caller that may stop the render (core/base/cancel.hpp)
+    RenderMonitor* monitor = nullptr;  // told the progress, polled for interrupts (core/base/render_monitor.hpp)
     std::string compression;   // the EXR's compression; "" = the default (core/base/exr_options.hpp)
     std::vector<std::string> pixelTypes;  // -d specs: half, float, CHANNEL=TYPE
 };

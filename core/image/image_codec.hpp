@@ -40,4 +40,4 @@ const ImageCodec& imageCodec();
 }  // namespace weft
 
 // The module's one entry point.
-extern "C" const weft::ImageCodec* weft_image_codec();
+extern "C" const void* weft_image_codec();  // the module's ImageCodec

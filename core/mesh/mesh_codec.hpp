@@ -26,4 +26,4 @@ const MeshCodec& meshCodec();
 }  // namespace weft
 
 // The module's one entry point.
-extern "C" const weft::MeshCodec* weft_mesh_codec();
+extern "C" const void* weft_mesh_codec();  // the module's MeshCodec

@@ -21,7 +21,7 @@ void ImagePlane::forEachRow(const char* label, RowFn rowFn) const {
     const RenderSettings& s = settings_;
     const int end = s.rowEnd < 0 ? s.height : std::min(s.rowEnd, s.height);
     const int begin = std::clamp(s.rowBegin, 0, end);
-    Progress progress(label, end - begin, s.showProgress, s.cancel);
+    Progress progress(label, end - begin, s.monitor);
     tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y != rows.end(); ++y) {
             rowFn(y);
@@ -163,7 +163,7 @@ void ImagePlane::boxRow(Shader& shade, int y, Image& image) const {
     for (int x = 0; x < W; ++x) patterns[x] = patternsOf(x, y);
     const int n = patterns_ ? patterns_->tileWidth() : 1;
     for (int k = 0; k < spp; ++k) {
-        throwIfCancelled(settings_.cancel);  // a row of many samples takes long: each pass over it polls
+        throwIfInterrupted(settings_.monitor);  // a row of many samples takes long: each pass over it polls
         for (int a = 0; a < n; ++a)
             for (int x = a; x < W; x += n) sum[x] += shade(sample(x, y, k, patterns[x]));
     }
@@ -194,7 +194,7 @@ Image ImagePlane::render(RenderContext& ctx, const char* label, MakeShader makeS
             return;
         }
         for (int x = 0; x < s.width; ++x) {
-            throwIfCancelled(s.cancel);
+            throwIfInterrupted(s.monitor);
             if (wide) {
                 const PixelPatterns patterns = patternsOf(x, y);
                 for (int k = 0; k < s.spp; ++k) {

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "core/base/atomic_file.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/chain.hpp"
+#include "plugins/host/command_line_monitor.hpp"
 #include "plugins/plugin_api.hpp"
 
 namespace {
@@ -45,9 +45,12 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    weft::removeTemporaryOutputsOnInterrupt();
+    weft::installStopSignalHandlers();
     try {
         return run(argc, argv);
+    } catch (const weft::Cancelled& e) {
+        weft::endBySignalIfReceived();  // SIGINT/SIGTERM stopped a render: end as the signal would
+        std::fprintf(stderr, "weft: error: %s\n", e.what());
     } catch (const weft::Error& e) {
         std::fprintf(stderr, "weft: error: %s\n", weft::printableLine(e.what()).c_str());
     } catch (const openvdb::Exception& e) {

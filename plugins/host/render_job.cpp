@@ -11,13 +11,12 @@
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/frames.hpp"
-#include "core/base/huge_pages.hpp"
 #include "core/base/input_file.hpp"
 #include "core/base/physical_memory.hpp"
-#include "core/base/progress.hpp"
 #include "core/scene/scene.hpp"
 #include "core/scene/scene_budget.hpp"
 #include "plugins/host/command.hpp"
+#include "plugins/host/command_line_monitor.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {
@@ -69,7 +68,6 @@ RenderSettings settingsFor(const RenderRequest& q) {
     s.spp = *q.spp;
     checkRenderNumber("spp", s.spp, kOnCommandLine);  // requests built in code skip the table
     s.seed = *q.seed;
-    s.showProgress = Progress::terminalAttached();
     return s;
 }
 
@@ -119,7 +117,6 @@ void writeStats(const RenderRequest& r, const RenderOutcome& out, int threads) {
     j["counters"] = nlohmann::ordered_json::object();
     for (const auto& [k, v] : out.counters) j["counters"][k] = v;
     for (const auto& [k, v] : out.timingsMs) j["timings_ms"][k] = v;
-    j["heap_huge_page_mappings"] = heapMappingsOnHugePages();  // the process's so far (core/base/huge_pages.hpp)
     writeTextAtomically(r.stats, j.dump(2) + "\n", "stats");
 }
 
@@ -250,15 +247,17 @@ CheckedRender checkRender(const RenderRequest& r, const Scene& scene) {
 }
 
 RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loaded) {
+    const RenderRunning running;  // on the command line, a signal now interrupts the render instead of ending weft
+    RenderMonitor* monitor = r.monitor ? r.monitor : &commandLineMonitor();
     const Scene& scene = *loaded.scene;
     RenderContext ctx;
     ctx.timings.add("load", loaded.loadMs);
-    ctx.timings.cancel = r.cancel;
+    ctx.timings.monitor = monitor;
     const CheckedRender checked = checkRender(r, scene);
     const RenderRequest& q = checked.effective;
     const ParamSet& params = checked.params;
     ctx.settings = settingsFor(q);
-    ctx.settings.cancel = r.cancel;
+    ctx.settings.monitor = monitor;
     RowBand band{0, ctx.settings.height};
     if (!r.tile.empty()) {
         const auto [index, count] = parseTileSpec(r.tile);
@@ -286,6 +285,7 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
         ScopedTimer timer(ctx.timings, "render");
         out.image = inStage(stage, [&] { return technique->render(scene, ctx); });
     }
+    throwIfInterrupted(monitor);  // interrupted after its last poll: still nothing is written
     if (std::int64_t bad = scrubNonFinite(out.image)) {
         ctx.counters.add(kImageNonfinite, bad);
         std::fprintf(stderr, "weft: warning: %s produced %lld NaN/Inf values (written as 0)\n", name.c_str(), (long long)bad);
@@ -369,6 +369,8 @@ int runRenders(const std::vector<RenderRequest>& requests, const AfterRender& af
         try {
             RenderOutcome out = runRender(q);
             if (after) after(q, out);
+        } catch (const Cancelled&) {
+            throw;  // the whole command stops, not only this frame
         } catch (const std::exception& e) {
             ++failed;
             const std::string frame = q.frame ? "frame " + std::to_string(*q.frame) + ": " : "";

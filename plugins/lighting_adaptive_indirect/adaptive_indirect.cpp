@@ -44,6 +44,7 @@
 #include <optional>
 
 #include "core/base/large_buffer.hpp"
+#include "core/base/progress.hpp"
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/delta_lights.hpp"
 #include "core/mesh/mesh_accel.hpp"
@@ -92,7 +93,7 @@ Params readParams(const ParamSet& p) {
 // NaN (a missing sample for the filter) where it has none.
 FreshBuffer<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est, const std::vector<std::uint32_t>& counts,
                                   std::int64_t batchSize, std::uint64_t seed, const VolumeAttenuation& volumes,
-                                  Counters& counters) {
+                                  Counters& counters, RenderMonitor* monitor) {
     const std::vector<std::int64_t> offsets = exclusiveScan(counts);
     const SampleBatches batches(offsets, batchSize > 0 ? batchSize : std::int64_t(counts.size()));
     // Neither buffer is cleared: the passes below write every entry they
@@ -100,6 +101,7 @@ FreshBuffer<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
     FreshBuffer<float> sums(3 * counts.size());
     std::vector<std::uint32_t> samplePixel;
     FreshBuffer<Vec3f> results;
+    Progress progress("lighting.adaptive_indirect samples", offsets.back(), monitor);
     for (std::int64_t b = 0; b < batches.count(); ++b) {
         batches.fill(b, samplePixel);
         results.resize(samplePixel.size());
@@ -117,6 +119,7 @@ FreshBuffer<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
             }
             counters.add(kRaysIndirect, rays.bounce), counters.add(kRaysShadow, rays.shadow);
             if (media) media->report(counters);
+            progress.advance(std::int64_t(r.size()));
         });
         // Store: each pixel adds its samples in order, so batches change
         // nothing; the batch holding a pixel's first sample starts its sum.
@@ -135,6 +138,7 @@ FreshBuffer<float> sampleIndirect(const GBuffer& g, const IndirectEstimator& est
         for (int c = 0; c < 3; ++c) sums[3 * i + c] = counts[i] ? sums[3 * i + c] / float(counts[i]) : std::nanf("");
     });
     counters.add(kSamplesIndirect, offsets.back());
+    progress.finish();
     return sums;
 }
 
@@ -162,7 +166,7 @@ public:
             ScopedTimer t(ctx.timings, "VT.transmittance");
             eyeT = cameraTransmittance(scene, g, volumes, ctx.counters);
         }
-        { ScopedTimer t(ctx.timings, "IS.indirect"); raw = sampleIndirect(g, est, counts, p_.batch, s.seed, volumes, ctx.counters); }
+        { ScopedTimer t(ctx.timings, "IS.indirect"); raw = sampleIndirect(g, est, counts, p_.batch, s.seed, volumes, ctx.counters, s.monitor); }
         FreshBuffer<float> filtered = copiedBuffer(raw);
         if (p_.mode != Mode::Uniform) {
             ScopedTimer t(ctx.timings, "AT.atrous");

@@ -8,6 +8,7 @@
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/emitters.hpp"
 #include "core/mesh/mesh_accel.hpp"
+#include "core/base/progress.hpp"
 #include "core/base/rng.hpp"
 
 namespace weft {
@@ -118,12 +119,13 @@ void shadeTask(const Scene& scene, const ShadeSource& src, const SubBufferLayout
 
 LightBuffer shadeSubBuffers(const Scene& scene, const ShadeSource& src, const SubBufferLayout& L,
                                         const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& cfg,
-                                        Counters& counters) {
+                                        Counters& counters, RenderMonitor* monitor) {
     const int S = L.count();
     std::vector<std::vector<const Vpl*>> subsets(static_cast<std::size_t>(S));
     for (const Vpl& v : vpls.vpls) subsets[v.path % std::uint32_t(S)].push_back(&v);
     LightBuffer out = zeroedBuffer<LightTexel>(std::size_t(L.width()) * std::size_t(L.height()));
     const std::vector<ShadeTask> tasks = shadeTasks(L);
+    Progress progress("lighting.vpl_deferred shading", std::int64_t(tasks.size()), monitor);
     tbb::parallel_for(std::size_t(0), tasks.size(), [&](std::size_t k) {
         enableFastFloatMode();
         const ShadeTask& task = tasks[k];
@@ -132,7 +134,9 @@ LightBuffer shadeSubBuffers(const Scene& scene, const ShadeSource& src, const Su
         shadeTask(scene, src, L, task, subsets[std::size_t(task.subBuffer)], std::max(1.0f, paths), brdfs, cfg, out, counts, counters);
         counters.add(kFragmentsShaded, counts.fragments);
         counters.add(kRaysShadow, counts.rays);
+        progress.advance();
     });
+    progress.finish();
     return out;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/base/counters.hpp"
+#include "core/base/render_monitor.hpp"
 #include "core/base/large_buffer.hpp"
 #include "core/screen/gbuffer.hpp"
 #include "core/screen/interleave.hpp"
@@ -51,10 +52,11 @@ struct ShadeSource {
     const GBuffer* gbuffer = nullptr;  // read when `split` is null
 };
 
-// The light of every texel, at the texel's index in `source`.
+// The light of every texel, at the texel's index in `source`; the tasks'
+// progress goes to `monitor` (which may stop the pass).
 LightBuffer shadeSubBuffers(const Scene& scene, const ShadeSource& source, const SubBufferLayout& layout,
                             const VplSet& vpls, const std::vector<Brdf>& brdfs, const ShadeConfig& config,
-                            Counters& counters);
+                            Counters& counters, RenderMonitor* monitor = nullptr);
 
 // Adds the clamped-away part of one-bounce indirect light (Kollig and Keller
 // 2004): a BRDF-sampled ray from each texel; where it lands closer than the

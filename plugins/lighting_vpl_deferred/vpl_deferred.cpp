@@ -147,7 +147,7 @@ public:
         LightBuffer light;
         {
             ScopedTimer t(ctx.timings, p_.visibility ? "SSM.shade" : "SNSM.shade");
-            light = shadeSubBuffers(scene, {copies ? &split : nullptr, &g}, layout, vpls, brdfs, cfg, ctx.counters);
+            light = shadeSubBuffers(scene, {copies ? &split : nullptr, &g}, layout, vpls, brdfs, cfg, ctx.counters, s.monitor);
         }
         LargeBuffer<ShadeTexel>().swap(split);  // read by no later pass
         if (copies) gatherPass(light, layout, ctx);

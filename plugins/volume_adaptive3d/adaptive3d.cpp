@@ -110,7 +110,7 @@ public:
         if (accel) surfaces = traceSurfaces(scene, *accel, vol, pw, ph, s);
         SliceTables tables(volumes, params_.slice.spacing, block, params_.slice.tableResolution, params_.slice.precision);
         const std::vector<double> times = shutterTimes(scene, s);
-        Progress progress("volume.adaptive3d", std::int64_t(slices.imax + 1) * std::int64_t(times.size()), s.showProgress, s.cancel);
+        Progress progress("volume.adaptive3d", std::int64_t(slices.imax + 1) * std::int64_t(times.size()), s.monitor);
         Image image;
         for (double time : times) {
             std::optional<Pyramid> pyramid;

@@ -61,25 +61,6 @@ TEST(RenderCli, WritesMetadataStatsAndPreview) {
 
 // --compression and -d choose the EXR's encoding and say so in its
 // metadata; a bad value is one line before anything renders, and no file.
-// The weft process's heap takes its large mappings on huge pages
-// (core/base/huge_pages.hpp) unless WEFT_HEAP_HUGE_PAGES=0; sanitized
-// builds leave mmap to their runtime.
-TEST(RenderCli, HeapMappingsGoOnHugePagesUnlessTurnedOff) {
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-    GTEST_SKIP() << "sanitized builds do not hook mmap";
-#endif
-#endif
-    TempDir dir;
-    const std::string args = "render builtin:cloud --res 64x64 -o " + (dir / "o.exr").string() + " --stats " + (dir / "s.json").string();
-    ASSERT_EQ(runWeft(args).status, 0);
-    EXPECT_GT(nlohmann::json::parse(readBytes(dir / "s.json"))["heap_huge_page_mappings"].get<long long>(), 0);
-    const std::string once = readBytes(dir / "o.exr");
-    ASSERT_EQ(runWeft(args, "WEFT_HEAP_HUGE_PAGES=0").status, 0);
-    EXPECT_EQ(nlohmann::json::parse(readBytes(dir / "s.json"))["heap_huge_page_mappings"].get<long long>(), 0);
-    EXPECT_EQ(readBytes(dir / "o.exr"), once);  // where memory comes from changes no pixel
-}
-
 TEST(RenderCli, CompressionAndPixelTypesAreChosenAndRecorded) {
     TempDir dir;
     const auto r = runWeft("render builtin:sphere --res 24x16 --compression piz -d half -d A=float -o " + (dir / "h.exr").string());

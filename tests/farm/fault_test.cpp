@@ -83,6 +83,36 @@ TEST(FarmFaults, TermAndIntRemoveTheTemporaryOutput) {
     }
 }
 
+// A signal while the render runs stops it at its next row: weft says so,
+// writes nothing and still ends by the signal, so the shell or the farm's
+// scheduler sees what happened. A signal that lands while weft still loads
+// ends it at once instead; the delay grows until one lands in the render.
+TEST(FarmFaults, TermAndIntDuringTheRenderStopItAndWriteNothing) {
+    for (int sig : {SIGTERM, SIGINT}) {
+        bool stoppedInRender = false;
+        for (int delayMs = 500; delayMs <= 8000 && !stoppedInRender; delayMs *= 2) {
+            TempDir dir;
+            const fs::path out = dir / "frame.exr", err = dir / "stderr.txt";
+            const pid_t pid = fork();
+            if (pid == 0) {
+                if (!freopen(err.c_str(), "w", stderr)) _exit(127);
+                execl(WEFT_BIN, WEFT_BIN, "render", "builtin:cloud", "--res", "512x512", "--spp", "256", "--threads", "1", "-o",
+                      out.c_str(), static_cast<char*>(nullptr));
+                _exit(127);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
+            kill(pid, sig);
+            int status = 0;
+            waitpid(pid, &status, 0);
+            EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "ends as the signal would end it";
+            EXPECT_FALSE(fs::exists(out));
+            EXPECT_FALSE(tempFileIn(dir.path()));
+            stoppedInRender = readBytes(err).find("the render stopped and wrote nothing") != std::string::npos;
+        }
+        EXPECT_TRUE(stoppedInRender) << "signal " << sig << " never stopped a running render";
+    }
+}
+
 TEST(FarmFaults, StaleTemporaryOutputOfADeadProcessIsRemoved) {
     TempDir dir;
     // pids never reach 999999999 (Linux's pid_max is at most 2^22): its writer is gone.

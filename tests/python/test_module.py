@@ -180,6 +180,25 @@ class SameAsTheCommand(unittest.TestCase):
             signal.signal(signal.SIGALRM, previous)
         self.assertEqual(s.render(res=(8, 8)).pixels.shape[:2], (8, 8))  # the scene renders on
 
+    def test_progress_callback_sees_each_pass_end_and_can_cancel(self):
+        s = weft.load_scene(SMOKE)
+        seen = []
+        s.render(res=(64, 48), progress=lambda name, fraction: seen.append((name, fraction)))
+        self.assertTrue(seen)
+        self.assertTrue(all(0.0 <= f <= 1.0 for _, f in seen))
+        self.assertEqual(seen[-1][1], 1.0)
+        self.assertTrue(issubclass(weft.Cancelled, weft.Error))
+        start = time.monotonic()
+        with self.assertRaises(weft.Cancelled):  # False stops the render
+            s.render(res=(512, 512), spp=1024, params={"step": 0.05}, progress=lambda name, fraction: False)
+        self.assertLess(time.monotonic() - start, 5.0)
+
+        def fails(name, fraction):
+            raise ValueError("from the callback")
+        with self.assertRaisesRegex(ValueError, "from the callback"):
+            s.render(res=(512, 512), spp=1024, params={"step": 0.05}, progress=fails)
+        self.assertEqual(s.render(res=(8, 8)).pixels.shape[:2], (8, 8))  # the scene renders on
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -107,7 +107,9 @@ std::pair<Image, Image> noisyPair(float offset, float spread, int w = 37, int h 
 // shorter than a window.
 TEST(ImageCompare, SsimMatchesItsDefinitionAtAnyOffset) {
     for (const auto& [offset, spread] : {std::pair{0.0f, 1.0f}, std::pair{0.5f, 1e-3f}, std::pair{1e6f, 0.1f}, std::pair{-3e4f, 50.0f}}) {
-        const auto [a, b] = noisyPair(offset, spread);
+        const auto pair = noisyPair(offset, spread);
+        const Image& a = pair.first;  // named references, not bindings: lambdas below capture them
+        const Image& b = pair.second;
         const ImageComparison c = compareImages(a, b);
         for (int ch = 0; ch < 4; ++ch)
             EXPECT_NEAR(c.channels[ch].ssim, directSsim(a, b, ch), 1e-9) << "offset " << offset << " channel " << ch;

@@ -99,4 +99,5 @@ const weft::ImageCodec kCodec{weft::kImageCodecAbi, writeImage, readImage};
 
 }  // namespace
 
-extern "C" const weft::ImageCodec* weft_image_codec() { return &kCodec; }
+// `const void*`, the type loadModule calls it through (core/base/module_loader.hpp).
+extern "C" const void* weft_image_codec() { return &kCodec; }

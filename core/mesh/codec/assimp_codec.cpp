@@ -46,4 +46,5 @@ const weft::MeshCodec kCodec{weft::kMeshCodecAbi, readPly};
 
 }  // namespace
 
-extern "C" const weft::MeshCodec* weft_mesh_codec() { return &kCodec; }
+// `const void*`, the type loadModule calls it through (core/base/module_loader.hpp).
+extern "C" const void* weft_mesh_codec() { return &kCodec; }

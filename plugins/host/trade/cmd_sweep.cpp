@@ -15,7 +15,7 @@
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/error.hpp"
-#include "core/base/progress.hpp"
+#include "plugins/host/command_line_monitor.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/trade/sweep_report.hpp"
 #include "plugins/host/trade/trade_options.hpp"
@@ -117,7 +117,7 @@ void runSweepCommand(const SweepCommand& c) {
     }
     const std::size_t count = runs.size();
     if (c.only > 0) runs = {runs[std::size_t(c.only - 1)]};
-    const std::vector<SweepResult> results = runSweep(runs, base, first, references, {c.repeat, Progress::terminalAttached()});
+    const std::vector<SweepResult> results = runSweep(runs, base, first, references, {c.repeat, stderrIsTerminal()});
     if (c.only == 0) return writeReports(c, results, info);
     fs::create_directories(path(c, "runs"));
     char name[32];

@@ -14,7 +14,7 @@
 
 #include "core/base/atomic_file.hpp"
 #include "core/base/error.hpp"
-#include "core/base/progress.hpp"
+#include "plugins/host/command_line_monitor.hpp"
 #include "core/scene/scene.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/trade/sweep_report.hpp"
@@ -154,7 +154,7 @@ void runTuneCommand(const TuneCommand& c) {
         if (techniques().get(n).knobs.empty()) throw Error(n + " declares no speed/accuracy knobs to tune");
     SweepReferences references(c.reference, cacheDirOf(c));
     const std::vector<TuneChoice> choices =
-        tuneTechniques(base, names, first, references, target, {c.rounds, {c.repeat, Progress::terminalAttached()}});
+        tuneTechniques(base, names, first, references, target, {c.rounds, {c.repeat, stderrIsTerminal()}});
     printChoices(choices, target);
     if (!c.json.empty()) writeChoice(c.json, choices, target);
 }

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/base/error.hpp"
+#include "core/base/render_monitor.hpp"
 
 namespace weft {
 
@@ -60,6 +61,8 @@ SweepResult runOne(const SweepRun& run, const LoadedScene& scene, SweepReference
             res.repeatMs.push_back(msSince(t0));
             if (i == 0) first = std::move(out);
         }
+    } catch (const Cancelled&) {
+        throw;
     } catch (const Error& e) {
         res.refused = e.what();
         return res;
@@ -107,6 +110,8 @@ std::vector<SweepResult> runSweep(const std::vector<SweepRun>& runs, const Rende
     for (const SweepRun& run : runs) {
         try {
             results.push_back(runOne(run, scenes.sceneFor(run.request), references, std::max(1, options.repeat)));
+        } catch (const Cancelled&) {
+            throw;
         } catch (const Error& e) {
             throw Error("sweep run " + std::to_string(run.index + 1) + " (" + run.technique + " " + runLabel(run) + "): " + e.what());
         }
