@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image/image_spectrum.hpp"
+#include "core/image/compare/image_spectrum.hpp"
 #include "core/sampling/generators.hpp"
 #include "core/sampling/image_plane.hpp"
 #include "plugins/host/render_job.hpp"

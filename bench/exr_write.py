@@ -7,7 +7,7 @@ measured side by side in one run (the `write` timing of --stats).
 
 The frame is lighting.vpl_deferred's Cornell box at interleave 8x6: RGBA
 and 15 AOV channels, the largest frame a technique writes. The default
-compression (core/base/exr_options.hpp) is the quickest lossless one on
+compression (core/base/options/exr_options.hpp) is the quickest lossless one on
 every core, among those whose file is smaller than uncompressed.
 """
 import argparse

@@ -1,6 +1,6 @@
 // Trilinear samples per second on one thread: OpenVDB's GridSampler with
 // BoxSampler (what every volume technique used) against weft's LeafSampler
-// (core/volume/leaf_sampler.hpp), side by side on the same rays: parallel
+// (core/volume/grid/leaf_sampler.hpp), side by side on the same rays: parallel
 // rays along z through the grid's active box, a sample every half voxel.
 // Prints both rates, their ratio and the largest difference of a sample
 // (LeafSampler interpolates in float: float rounding, not more).
@@ -15,7 +15,7 @@
 
 #include <openvdb/tools/Interpolation.h>
 
-#include "core/volume/leaf_sampler.hpp"
+#include "core/volume/grid/leaf_sampler.hpp"
 #include "core/volume/volume.hpp"
 
 namespace {

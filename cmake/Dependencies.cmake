@@ -14,7 +14,7 @@ find_package(OpenVDB REQUIRED)
 # libopencv-dev; pkg-config avoids it.
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 pkg_check_modules(OPENEXR REQUIRED IMPORTED_TARGET OpenEXR)
-# PNG previews through libpng itself (core/image/png_writer.hpp).
+# PNG previews through libpng itself (core/image/io/png_writer.hpp).
 find_package(PNG REQUIRED)
 
 # OpenColorIO's config sits in /usr/lib/cmake where find_package does not look.

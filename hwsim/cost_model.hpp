@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 
 namespace weft::hwsim {
 

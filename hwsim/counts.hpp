@@ -16,7 +16,7 @@
 //   stats.clipping_output_primitives    primitives leaving the clipper (CLIPPING_OUTPUT_PRIMITIVES)
 #include <cstdint>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 
 namespace weft::hwsim {
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "core/base/large_buffer.hpp"
+#include "core/base/memory/large_buffer.hpp"
 
 namespace weft::hwsim {
 

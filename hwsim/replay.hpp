@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "core/image/image.hpp"
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 #include "core/base/registry.hpp"
 #include "hwsim/counts.hpp"
 #include "hwsim/profile.hpp"

@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/volume/octant_shift.hpp"
-#include "core/volume/topology_dilation.hpp"
+#include "core/volume/grid/octant_shift.hpp"
+#include "core/volume/grid/topology_dilation.hpp"
 
 namespace weft {
 

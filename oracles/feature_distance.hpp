@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "core/volume/leaf_reach.hpp"
+#include "core/volume/grid/leaf_reach.hpp"
 #include "oracles/oracle.hpp"
 
 namespace weft {
@@ -20,7 +20,7 @@ double sliceOpacity(const Volume& volume, double spacing, float value);
 // whole number of leaves that moves every voxel the field can hold (the
 // active box, grown by the rings around features) above the index origin.
 // A tree over a volume around the origin then keeps one top node instead of
-// eight (core/volume/octant_shift.hpp). Zero for an empty volume.
+// eight (core/volume/grid/octant_shift.hpp). Zero for an empty volume.
 openvdb::Coord oracleShift(const Volume& volume);
 
 // The active voxels of a grid and their face neighbours, moved by `shift`:
@@ -43,7 +43,7 @@ OracleField distanceToFeatures(const openvdb::MaskGrid& features, const OracleCo
 // The two ways distanceToFeatures builds the field of a mask; the values
 // are the same. By rings: OpenVDB's dilation one ring at a time, any cap.
 // By blocks: each leaf within reach of a feature on its own, in parallel
-// (core/volume/leaf_reach.hpp); for at most kMaxLeafReach rings.
+// (core/volume/grid/leaf_reach.hpp); for at most kMaxLeafReach rings.
 OracleField distanceFieldByRings(const openvdb::MaskGrid& features, const OracleContext& ctx);
 OracleField distanceFieldByBlocks(const openvdb::MaskGrid& features, const OracleContext& ctx);
 

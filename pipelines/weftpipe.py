@@ -1,7 +1,7 @@
 """Shared pieces of the weft pipeline scripts (standard library only).
 
 Frame ranges and frame-numbered names follow `weft render` exactly
-(core/base/frames.hpp): "1001-1100x2", "1,3,5-9", "-5--1"; in names the first run
+(core/base/options/frames.hpp): "1001-1100x2", "1,3,5-9", "-5--1"; in names the first run
 of '#' and '@' is the frame number, 4 digits per '#' and 1 per '@'
 ("#" -> 0042, "@@@" -> 042), "%04d" works too.
 """

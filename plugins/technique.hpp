@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "core/image/image.hpp"
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 #include "core/base/registry.hpp"
-#include "core/base/render_context.hpp"
+#include "core/base/run/render_context.hpp"
 #include "core/scene/scene.hpp"
 
 namespace weft {

@@ -27,9 +27,9 @@
 #include <vector>
 
 #include "core/base/error.hpp"
-#include "core/base/render_monitor.hpp"
-#include "core/image/image_compare.hpp"
-#include "core/image/image_io.hpp"
+#include "core/base/run/render_monitor.hpp"
+#include "core/image/compare/image_compare.hpp"
+#include "core/image/io/image_io.hpp"
 #include "core/scene/scene.hpp"
 #include "plugins/host/frame_check.hpp"
 #include "plugins/host/help_text.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/base/large_buffer.hpp"
+#include "core/base/memory/large_buffer.hpp"
 
 namespace weft {
 

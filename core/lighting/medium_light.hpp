@@ -13,7 +13,7 @@
 #include "core/lighting/emitters.hpp"
 #include "core/mesh/mesh_accel.hpp"
 #include "core/scene/scene.hpp"
-#include "core/volume/medium.hpp"
+#include "core/volume/media/medium.hpp"
 
 namespace weft {
 

@@ -2,7 +2,7 @@
 // Volumes as the deferred lighting techniques (lighting.vpl_deferred,
 // lighting.adaptive_indirect) see them: a medium that absorbs and
 // out-scatters the light along camera rays, shadow rays and light paths,
-// by the deterministic marched transmittance (core/volume/
+// by the deterministic marched transmittance (core/volume/media/
 // marched_transmittance.hpp), and scatters none in. The medium is built
 // only for a scene with volumes; without one active() is false and callers
 // skip every lookup, so their images are exactly those of a mesh scene.
@@ -10,10 +10,10 @@
 #include <optional>
 #include <vector>
 
-#include "core/base/counters.hpp"
-#include "core/base/params.hpp"
+#include "core/base/run/counters.hpp"
+#include "core/base/options/params.hpp"
 #include "core/scene/scene.hpp"
-#include "core/volume/marched_transmittance.hpp"
+#include "core/volume/media/marched_transmittance.hpp"
 
 namespace weft {
 

@@ -1,6 +1,6 @@
 #include "core/mesh/mesh_codec.hpp"
 
-#include "core/base/module_loader.hpp"
+#include "core/base/files/module_loader.hpp"
 
 namespace weft {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "core/base/error.hpp"
-#include "core/base/input_file.hpp"
+#include "core/base/files/input_file.hpp"
 #include "core/mesh/mesh.hpp"
 #include "core/mesh/mesh_codec.hpp"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 #include "core/base/registry.hpp"
 #include "core/sampling/pattern_set.hpp"
 

@@ -32,10 +32,10 @@
 #include <string>
 #include <vector>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "core/image/image.hpp"
-#include "core/base/params.hpp"
-#include "core/base/render_context.hpp"
+#include "core/base/options/params.hpp"
+#include "core/base/run/render_context.hpp"
 #include "core/sampling/filters.hpp"
 #include "core/sampling/pattern_set.hpp"
 #include "core/sampling/pixel_sampler.hpp"

@@ -5,7 +5,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "core/base/progress.hpp"
+#include "core/base/run/progress.hpp"
 #include "core/base/rng.hpp"
 
 namespace weft {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/base/render_options.hpp"
+#include "core/base/options/render_options.hpp"
 #include "core/scene/camera.hpp"
 #include "core/mesh/mesh.hpp"
 #include "core/volume/volume.hpp"
@@ -28,7 +28,7 @@ struct Light {
 };
 
 // A scene file's "render" block, read through the render option table
-// (core/base/render_options.hpp): only technique, resolution, spp, seed and
+// (core/base/options/render_options.hpp): only technique, resolution, spp, seed and
 // set/params may be set there; the command line's values win over them.
 using SceneRenderSettings = RenderRequest;
 
@@ -108,7 +108,7 @@ std::string unusedColorGrids(const Scene& scene, const std::string& technique);
 // when not given, a scene file's own resolution decides, else 1.
 // gridName picks the grid of a bare .vdb (default: "density", else the first float grid).
 // frame, when given, selects what varies with the frame in a scene file:
-// frame-numbered volume files ("smoke.#.vdb", see core/base/frames.hpp) and a
+// frame-numbered volume files ("smoke.#.vdb", see core/base/options/frames.hpp) and a
 // camera keyed by frame ("camera": {"keys": [{"frame": 1, "eye": ...}, ...]}),
 // which, with an open shutter ("camera": {"shutter": [-0.25, 0.25]}), moves
 // within the frame: motion blur whose time samples follow the frame.

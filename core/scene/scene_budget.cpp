@@ -5,8 +5,8 @@
 #include <set>
 
 #include "core/base/error.hpp"
-#include "core/base/input_file.hpp"
-#include "core/volume/vdb_preflight.hpp"
+#include "core/base/files/input_file.hpp"
+#include "core/volume/io/vdb_preflight.hpp"
 
 namespace weft {
 

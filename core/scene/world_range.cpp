@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/base/error.hpp"
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 
 namespace weft {
 

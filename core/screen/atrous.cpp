@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "core/base/error.hpp"
-#include "core/base/large_buffer.hpp"
+#include "core/base/memory/large_buffer.hpp"
 #include "core/mesh/mesh_accel.hpp"
 
 namespace weft {

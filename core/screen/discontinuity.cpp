@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <stdexcept>
 
-#include "core/base/large_buffer.hpp"
+#include "core/base/memory/large_buffer.hpp"
 
 namespace weft {
 

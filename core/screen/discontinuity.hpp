@@ -30,7 +30,7 @@ std::vector<std::uint8_t> discontinuityBuffer(const GBuffer& g, const Discontinu
 // Blurs the first `channels` of every `stride` floats per pixel in place;
 // kernel size 2*radius+1, sigma = radius / 2 (radius 0: no-op). The pass
 // along x goes to a scratch buffer of the blurred channels only, which may
-// reuse a released buffer's pages (core/base/large_buffer.hpp): whatever
+// reuse a released buffer's pages (core/base/memory/large_buffer.hpp): whatever
 // they held is never read.
 void discontinuityBlur(float* data, int width, int height, int stride, int channels,
                        const std::vector<std::uint8_t>& discontinuity, int radius);

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/base/large_buffer.hpp"
+#include "core/base/memory/large_buffer.hpp"
 #include "core/screen/discontinuity.hpp"
 #include "core/base/rng.hpp"
 

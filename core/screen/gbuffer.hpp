@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/base/counters.hpp"
-#include "core/base/large_buffer.hpp"
-#include "core/base/render_context.hpp"
+#include "core/base/run/counters.hpp"
+#include "core/base/memory/large_buffer.hpp"
+#include "core/base/run/render_context.hpp"
 #include "core/scene/scene.hpp"
 
 namespace weft {

@@ -1,7 +1,7 @@
 // The walk over a .vdb file's lengths and counts: a whole file passes, and
 // each corruption that made OpenVDB allocate gigabytes or loop for minutes
 // is named as the field it is.
-#include "core/volume/vdb_preflight.hpp"
+#include "core/volume/io/vdb_preflight.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 
 #include <cstring>
 
-#include "core/volume/vdb_leaf_reader.hpp"
+#include "core/volume/io/vdb_leaf_reader.hpp"
 #include "core/volume/volume.hpp"
 
 #include "core/base/error.hpp"

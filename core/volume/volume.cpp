@@ -8,20 +8,14 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <mutex>
 
 #include "core/base/error.hpp"
-#include "core/base/input_file.hpp"
-#include "core/volume/topology_dilation.hpp"
-#include "core/volume/vdb_leaf_reader.hpp"
-#include "core/volume/vdb_preflight.hpp"
+#include "core/base/files/input_file.hpp"
+#include "core/volume/grid/topology_dilation.hpp"
+#include "core/volume/io/vdb_leaf_reader.hpp"
+#include "core/volume/io/vdb_preflight.hpp"
 
 namespace weft {
-
-void initVdb() {
-    static std::once_flag once;
-    std::call_once(once, [] { openvdb::initialize(); });
-}
 
 double Volume::voxelLength() const {
     const Vec3d v = grid->transform().voxelSize();

@@ -7,7 +7,8 @@
 #include <openvdb/openvdb.h>
 
 #include "core/scene/camera.hpp"
-#include "core/volume/transfer_function.hpp"
+#include "core/volume/grid/vdb_init.hpp"
+#include "core/volume/optics/transfer_function.hpp"
 
 namespace weft {
 
@@ -83,9 +84,6 @@ openvdb::FloatGrid::ConstPtr indexSpaceGrid(const openvdb::FloatGrid& grid);
 // emits, dilated by the motion's reach where it moves: what an intersector
 // must not skip.
 openvdb::FloatGrid::ConstPtr occupancyIndexGrid(const Volume& volume, openvdb::FloatGrid::Ptr visible = nullptr);
-
-// Calls openvdb::initialize() once.
-void initVdb();
 
 // Reads one float grid. gridName empty: "density" if present, else the first
 // float grid. Errors name the file and list the grids it holds; with a role

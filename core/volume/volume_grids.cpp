@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "core/base/error.hpp"
-#include "core/volume/blackbody.hpp"
-#include "core/volume/vdb_preflight.hpp"
+#include "core/volume/optics/blackbody.hpp"
+#include "core/volume/io/vdb_preflight.hpp"
 #include "core/volume/volume.hpp"
 
 namespace weft {

@@ -13,7 +13,7 @@
 //   blackbody_intensity x (T / 1000 K)^4 x colour(T)   T = temperature x temperature_scale + temperature_offset
 //   + emission x color x strength
 // colour(T) is the Planckian radiator's colour at luminance 1
-// (core/volume/blackbody.hpp); the fourth power is the Stefan-Boltzmann law,
+// (core/volume/optics/blackbody.hpp); the fourth power is the Stefan-Boltzmann law,
 // so a hotter region is brighter as well as bluer. Emission comes from the
 // active voxels of the temperature and emission grids; inactive ones emit
 // nothing. The two are combined once per volume into one RGB grid

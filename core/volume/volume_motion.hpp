@@ -12,7 +12,7 @@
 
 #include <openvdb/openvdb.h>
 
-#include "core/volume/leaf_sampler.hpp"
+#include "core/volume/grid/leaf_sampler.hpp"
 #include "core/volume/volume.hpp"
 
 namespace weft {

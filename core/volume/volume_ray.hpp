@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/scene/camera.hpp"
-#include "core/volume/transfer_function.hpp"
+#include "core/volume/optics/transfer_function.hpp"
 #include "core/volume/volume.hpp"
 
 namespace weft {

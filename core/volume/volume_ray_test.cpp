@@ -1,31 +1,18 @@
 // Segment opacity within 2 ulp of 1 - exp(-t) over float's range, and
 // camera rays in a volume's index space: the directions mapped through the
-// transform's linear part are the map's own differences, and the pyramid's
-// rays built from them cross the same slices as rays mapped one by one.
+// transform's linear part are the map's own differences.
 #include "core/volume/volume_ray.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/volume/slices.hpp"
+#include "tests/support/volume_fixtures.hpp"
 
 namespace weft {
 namespace {
-
-// Sheared, anisotropic and moved away from the origin, with data in one corner.
-Volume skewedVolume() {
-    auto grid = openvdb::FloatGrid::create(0.0f);
-    grid->setTransform(openvdb::math::Transform::createLinearTransform(
-        openvdb::math::Mat4d(0.5, 0.1, 0.0, 0.0, 0.0, 0.25, 0.05, 0.0, 0.2, 0.0, 0.7, 0.0, 1.0, -2.0, 3.0, 1.0)));
-    grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(-5, 2, 0), openvdb::Coord(20, 17, 11)), 1.0f, true);
-    grid->tree().voxelizeActiveTiles();
-    Volume v;
-    v.grid = grid;
-    computeStatistics(v);
-    return v;
-}
 
 // Every float depth from 1e-30 to 100 in steps of a factor 1.0001 (about
 // 737,000 values, both sides of every change of k in the range reduction):
@@ -56,7 +43,7 @@ TEST(OpacityOfDepth, WithinTwoUlpOfExpm1AndMonotonic) {
 }
 
 TEST(IndexDirections, AreTheMapsDifferencesOfWorldPoints) {
-    const Volume v = skewedVolume();
+    const Volume v = test::skewedVolume();
     const IndexDirections toIndex(v);
     const auto& xf = v.grid->transform();
     const Vec3d origin(0.3, -1.2, 4.0);
@@ -65,34 +52,6 @@ TEST(IndexDirections, AreTheMapsDifferencesOfWorldPoints) {
         const Vec3d got = toIndex(d);
         EXPECT_NEAR((got - expected).length(), 0.0, 1e-9 * (1 + expected.length())) << d;
     }
-}
-
-TEST(MakeLevelRays, CrossTheSlicesOfRaysMappedOneByOne) {
-    const Volume v = skewedVolume();
-    Camera camera;
-    camera.eye = Vec3d(4, 1, 12), camera.target = Vec3d(3, 1, 3), camera.fovY = 50;
-    const SliceSetup slices = makeSliceSetup(camera, v, 0.5, 2);
-    const int w = 48, h = 40;
-    int inside = 0;
-    for (int level = 0; level <= 2; ++level) {
-        const LevelRays rays = makeLevelRays(camera, v, slices, level, w, h, w, h);
-        const CameraRays eye(camera, w, h);
-        for (int y = 0; y < rays.height; ++y)
-            for (int x = 0; x < rays.width; ++x) {
-                const int i = rays.index(x, y), scale = 1 << level;
-                const SliceRay one = sliceRayOf(eye.at(scale * (x + 0.5), scale * (y + 0.5)), v, slices);
-                EXPECT_NEAR((rays.dir[i] - one.dir).length(), 0.0, 1e-12);
-                int first = 1, last = 0;
-                if (one.inside) {
-                    const auto [f, l] = one.slices(slices);
-                    first = std::max(0, f), last = std::min(slices.imax, l);
-                }
-                EXPECT_EQ(rays.first[i], first) << level << " " << x << " " << y;
-                EXPECT_EQ(rays.last[i], last) << level << " " << x << " " << y;
-                inside += first <= last;
-            }
-    }
-    EXPECT_GT(inside, 500);  // the volume fills part of the frame, not none of it
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 // The error and aliasing table: every pattern family at every sample count
 // renders the analytic scenes (analytic.2d), and each image is compared with
 // the exact reference: RMSE, and the coherent-aliasing ratio of its error
-// image (core/image/image_spectrum.hpp: the strongest spectral peak away from DC
+// image (core/image/compare/image_spectrum.hpp: the strongest spectral peak away from DC
 // over the mean power; noise scores about ln(W H), aliasing far more).
 // A third figure, the RMSE of the error blurred by a Gaussian of sigma 2
 // pixels, is the error a viewer sees from a distance: noise averages away
@@ -14,9 +14,9 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
-#include "core/image/image_spectrum.hpp"
+#include "core/image/compare/image_spectrum.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/render_job.hpp"
 

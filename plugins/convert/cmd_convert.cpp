@@ -14,11 +14,11 @@
 #include <fstream>
 #include <optional>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
-#include "core/base/input_file.hpp"
-#include "core/volume/raw_volume.hpp"
-#include "core/volume/volume_import.hpp"
+#include "core/base/files/input_file.hpp"
+#include "core/volume/io/raw_volume.hpp"
+#include "core/volume/io/volume_import.hpp"
 #include "plugins/host/command.hpp"
 
 namespace weft {

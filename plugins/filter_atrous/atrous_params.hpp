@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "core/screen/atrous.hpp"
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 
 namespace weft {
 

@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <map>
 
-#include "core/base/atomic_file.hpp"
-#include "core/base/input_file.hpp"
+#include "core/base/files/atomic_file.hpp"
+#include "core/base/files/input_file.hpp"
 #include "core/base/error.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/chain.hpp"
 #include "plugins/filter_atrous/atrous_params.hpp"

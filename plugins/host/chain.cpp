@@ -1,9 +1,9 @@
 // The chain of plugins/host/chain.hpp: the render, its steps, and running them frame by frame.
 #include "plugins/host/chain.hpp"
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
-#include "core/base/frames.hpp"
+#include "core/base/options/frames.hpp"
 
 namespace weft {
 

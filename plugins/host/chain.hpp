@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/image/image.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "plugins/host/render_job.hpp"
 
 namespace weft {

@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/error.hpp"
-#include "core/base/frames.hpp"
-#include "core/base/input_file.hpp"
-#include "core/base/render_options.hpp"
+#include "core/base/options/frames.hpp"
+#include "core/base/files/input_file.hpp"
+#include "core/base/options/render_options.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/render_job.hpp"
 #include "plugins/technique.hpp"
@@ -26,7 +26,7 @@ namespace {
 
 using nlohmann::json;
 
-// A job's keys are the render options' names (core/base/render_options.hpp),
+// A job's keys are the render options' names (core/base/options/render_options.hpp),
 // read and checked by the same table as the command line; then the checks a
 // command line gets before any render (technique, --set keys, memory).
 RenderRequest requestOf(const json& job, const std::string& where) {

@@ -6,7 +6,7 @@
 // (`atrous`, the A-Trous filter step, lives with the filter: plugins/filter_atrous.)
 #include <cmath>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/image/color.hpp"
 #include "core/base/error.hpp"
 #include "plugins/host/command.hpp"

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <optional>
 
-#include "core/image/image_compare.hpp"
-#include "core/image/image_io.hpp"
-#include "core/image/regression_case.hpp"
+#include "core/image/compare/image_compare.hpp"
+#include "core/image/io/image_io.hpp"
+#include "core/image/compare/regression_case.hpp"
 #include "plugins/host/command.hpp"
 
 namespace weft {

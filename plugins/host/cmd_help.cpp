@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "core/base/error.hpp"
-#include "core/base/render_options.hpp"
+#include "core/base/options/render_options.hpp"
 
 #include "plugins/host/command.hpp"
 #include "plugins/host/help_text.hpp"
@@ -69,7 +69,7 @@ void printRenderOptions(bool markdown) {
                 renderOptionsHelp().c_str());
 }
 
-// `weft help counters`: every declared counter (core/base/counters.hpp).
+// `weft help counters`: every declared counter (core/base/run/counters.hpp).
 void printCounters(bool markdown) {
     if (markdown) return void(std::printf("%s", declaredCountersMarkdown().c_str()));
     std::printf("counters (stats JSON \"counters\", EXR weft:counter:NAME):\n");

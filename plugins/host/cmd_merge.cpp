@@ -4,9 +4,9 @@
 // farm task can name its frame's tiles by pattern.
 #include <optional>
 
-#include "core/base/atomic_file.hpp"
-#include "core/base/frames.hpp"
-#include "core/base/input_file.hpp"
+#include "core/base/files/atomic_file.hpp"
+#include "core/base/options/frames.hpp"
+#include "core/base/files/input_file.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/tile_merge.hpp"
 

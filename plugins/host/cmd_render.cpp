@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "core/base/error.hpp"
-#include "core/base/frames.hpp"
-#include "core/base/render_options.hpp"
+#include "core/base/options/frames.hpp"
+#include "core/base/options/render_options.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/chain.hpp"
 #include "plugins/host/render_job.hpp"

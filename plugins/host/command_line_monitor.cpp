@@ -9,7 +9,7 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 
 namespace weft {
 

@@ -9,7 +9,7 @@
 // any other moment (loading, writing a file, a command that does not
 // render), and at a second signal, the temporary outputs are removed and
 // the process ends at once.
-#include "core/base/render_monitor.hpp"
+#include "core/base/run/render_monitor.hpp"
 
 namespace weft {
 

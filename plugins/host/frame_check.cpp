@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 
 namespace weft {
 

@@ -9,10 +9,10 @@
 #include <set>
 #include <thread>
 
-#include "core/base/atomic_file.hpp"
-#include "core/base/frames.hpp"
-#include "core/base/input_file.hpp"
-#include "core/base/physical_memory.hpp"
+#include "core/base/files/atomic_file.hpp"
+#include "core/base/options/frames.hpp"
+#include "core/base/files/input_file.hpp"
+#include "core/base/memory/physical_memory.hpp"
 #include "core/scene/scene.hpp"
 #include "core/scene/scene_budget.hpp"
 #include "plugins/host/command.hpp"

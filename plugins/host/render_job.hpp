@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "core/image/image.hpp"
-#include "core/image/image_io.hpp"
-#include "core/base/render_context.hpp"
-#include "core/base/render_options.hpp"
+#include "core/image/io/image_io.hpp"
+#include "core/base/run/render_context.hpp"
+#include "core/base/options/render_options.hpp"
 
 namespace weft {
 

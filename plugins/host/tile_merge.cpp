@@ -5,8 +5,8 @@
 #include <map>
 
 #include "core/base/error.hpp"
-#include "core/base/frames.hpp"
-#include "core/volume/header_text.hpp"
+#include "core/base/options/frames.hpp"
+#include "core/volume/io/header_text.hpp"
 #include "plugins/host/render_job.hpp"
 
 namespace weft {

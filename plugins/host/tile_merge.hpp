@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/image/image.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 
 namespace weft {
 

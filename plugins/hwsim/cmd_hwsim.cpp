@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <map>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "hwsim/replay.hpp"
 #include "plugins/host/command.hpp"
 

@@ -43,8 +43,8 @@
 #include <cmath>
 #include <optional>
 
-#include "core/base/large_buffer.hpp"
-#include "core/base/progress.hpp"
+#include "core/base/memory/large_buffer.hpp"
+#include "core/base/run/progress.hpp"
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/delta_lights.hpp"
 #include "core/mesh/mesh_accel.hpp"

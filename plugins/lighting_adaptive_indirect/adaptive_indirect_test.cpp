@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include "core/image/image_compare.hpp"
+#include "core/image/compare/image_compare.hpp"
 #include "tests/support/mesh_fixtures.hpp"
 #include "tests/support/render_helpers.hpp"
 

@@ -8,7 +8,7 @@
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/emitters.hpp"
 #include "core/mesh/mesh_accel.hpp"
-#include "core/base/progress.hpp"
+#include "core/base/run/progress.hpp"
 #include "core/base/rng.hpp"
 
 namespace weft {

@@ -9,9 +9,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/base/counters.hpp"
-#include "core/base/render_monitor.hpp"
-#include "core/base/large_buffer.hpp"
+#include "core/base/run/counters.hpp"
+#include "core/base/run/render_monitor.hpp"
+#include "core/base/memory/large_buffer.hpp"
 #include "core/screen/gbuffer.hpp"
 #include "core/screen/interleave.hpp"
 #include "plugins/lighting_vpl_deferred/vpl.hpp"

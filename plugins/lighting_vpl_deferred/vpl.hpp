@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/volume_attenuation.hpp"
 #include "core/screen/gbuffer.hpp"

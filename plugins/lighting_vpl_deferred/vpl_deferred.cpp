@@ -193,7 +193,7 @@ private:
     }
 
     // B: discontinuity-aware blur of the light factors (glossy ones only when some material is glossy).
-    // Its scratch holds the blurred channels only and may reuse a released buffer's pages (core/base/large_buffer.hpp).
+    // Its scratch holds the blurred channels only and may reuse a released buffer's pages (core/base/memory/large_buffer.hpp).
     void blurPass(LightBuffer& light, const std::vector<std::uint8_t>& disc, const std::vector<Brdf>& brdfs,
                   const SubBufferLayout& layout, RenderContext& ctx) const {
         ScopedTimer t(ctx.timings, "B.blur");

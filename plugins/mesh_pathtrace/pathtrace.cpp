@@ -11,7 +11,7 @@
 // pure function of seed, pixel, sample and dimension: images are identical
 // for any thread count.
 //
-// In scenes with volumes the path tracer is volumetric (core/volume/medium.hpp):
+// In scenes with volumes the path tracer is volumetric (core/volume/media/medium.hpp):
 // free flights by weighted delta tracking against the max-channel majorant
 // (each RGB channel unbiased), Henyey-Greenstein scattering, and next-event
 // estimation at medium and surface vertices whose shadow rays surfaces block
@@ -41,7 +41,7 @@
 //
 // Velocity motion blur: every vertex and shadow ray of a camera sample's
 // path sees the moving volumes at that sample's shutter time
-// (core/volume/medium.hpp); the camera moves along its keys as well.
+// (core/volume/media/medium.hpp); the camera moves along its keys as well.
 //
 // Counters: rays.camera, image.samples, rays.bounce, rays.shadow; with volumes also
 // volume.lookups (density reads) and volume.collisions (tentative
@@ -59,7 +59,7 @@
 #include "core/mesh/mesh_accel.hpp"
 #include "core/sampling/image_plane.hpp"
 #include "core/sampling/pixel_sampler.hpp"
-#include "core/volume/medium.hpp"
+#include "core/volume/media/medium.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

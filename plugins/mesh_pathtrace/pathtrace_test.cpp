@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/lighting/brdf.hpp"
-#include "core/image/image_compare.hpp"
+#include "core/image/compare/image_compare.hpp"
 #include "core/base/rng.hpp"
 #include "tests/support/mesh_fixtures.hpp"
 #include "tests/support/render_helpers.hpp"

@@ -13,9 +13,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "core/sampling/generators.hpp"
 #include "core/sampling/pattern_analysis.hpp"
 #include "core/sampling/pattern_set.hpp"

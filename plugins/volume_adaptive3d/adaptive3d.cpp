@@ -2,7 +2,7 @@
 // (Kraus, Strengert, Klein, Ertl 2007).
 //
 // An oracle (oracles/) gives a sampling distance d everywhere. Slices are
-// processed front to back (core/volume/slices.hpp); slice i starts at pyramid level
+// processed front to back (core/volume/slice/slices.hpp); slice i starts at pyramid level
 // l_slice = min(trailing zeros of i, lmax) and walks down to level 0
 // (Figure 4). On each level a pixel
 //   - is synthesised from the coarser level (Figures 5-7: bilinear weights
@@ -21,7 +21,7 @@
 // Emission: each sample reads the volume's emission grid too (synthesised
 // like the data on coarser levels) and a segment's emitted radiance, linear
 // between its ends and absorbed along it, comes from the table's emission
-// weights (core/volume/preintegration.hpp), as in volume.preint; they are
+// weights (core/volume/optics/preintegration.hpp), as in volume.preint; they are
 // built only when a volume emits. The oracles see emission as a feature
 // where one slice's emitted radiance changes by more than epsilon per voxel
 // (oracles/feature_distance.hpp), so a glowing region is never skipped as
@@ -60,14 +60,14 @@
 #include <bit>
 #include <optional>
 
-#include "core/base/progress.hpp"
+#include "core/base/run/progress.hpp"
 #include "core/base/rng.hpp"
 #include "core/lighting/delta_lights.hpp"
 #include "core/lighting/surface_shading.hpp"
-#include "core/volume/segment_tables.hpp"
-#include "core/volume/slices.hpp"
+#include "core/volume/optics/segment_tables.hpp"
+#include "core/volume/slice/slices.hpp"
 #include "oracles/oracle_cache.hpp"
-#include "core/volume/slice_renderer.hpp"
+#include "core/volume/slice/slice_renderer.hpp"
 #include "plugins/technique.hpp"
 #include "plugins/volume_adaptive3d/pyramid.hpp"
 

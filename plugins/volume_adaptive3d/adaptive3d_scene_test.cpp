@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/volume/segment_tables.hpp"
+#include "core/volume/optics/segment_tables.hpp"
 #include "oracles/oracle.hpp"
 #include "tests/support/render_helpers.hpp"
 #include "tests/support/test_support.hpp"

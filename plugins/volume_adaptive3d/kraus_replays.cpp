@@ -32,7 +32,7 @@
 #include "core/base/error.hpp"
 #include "hwsim/pipeline.hpp"
 #include "hwsim/replay.hpp"
-#include "core/volume/slice_renderer.hpp"
+#include "core/volume/slice/slice_renderer.hpp"
 #include "plugins/volume_adaptive3d/pyramid.hpp"
 
 namespace weft {

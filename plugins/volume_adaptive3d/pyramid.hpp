@@ -14,13 +14,13 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "core/image/image.hpp"
-#include "core/volume/segment_tables.hpp"
-#include "core/volume/slice_volumes.hpp"
-#include "core/volume/slices.hpp"
+#include "core/volume/optics/segment_tables.hpp"
+#include "core/volume/slice/slice_volumes.hpp"
+#include "core/volume/slice/slices.hpp"
 #include "oracles/oracle.hpp"
-#include "core/volume/slice_renderer.hpp"
+#include "core/volume/slice/slice_renderer.hpp"
 
 namespace weft {
 

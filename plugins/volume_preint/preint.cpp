@@ -1,7 +1,7 @@
 // volume.preint — fixed-rate slice renderer with pre-integrated segments.
 //
 // Every ray is sampled on every slice (shells t_i = tNear + i * spacing, see
-// core/volume/slices.hpp) and each segment between neighbouring slices is
+// core/volume/slice/slices.hpp) and each segment between neighbouring slices is
 // composited from a pre-integration table lookup (s_front, s_back, one
 // slice). This is the "tex.-based" column of Kraus et al. 2007, Tables 2-3:
 // the reference volume.adaptive3d is measured against at the same spacing.
@@ -30,7 +30,7 @@
 // times a colour) is read at every slice beside the data and varies
 // linearly over a segment, like the data; the segment's emitted radiance,
 // absorbed along it by the transfer function's extinction, comes from
-// emission weights the table holds beside the colour (core/volume/
+// emission weights the table holds beside the colour (core/volume/optics/
 // preintegration.hpp), built only when a volume emits. The cut segment in
 // front of a surface integrates them exactly.
 //
@@ -41,7 +41,7 @@
 // as the camera-blurring techniques' do; segments between slices come from
 // the same tables. The camera itself renders one instant.
 //
-// Several volumes (core/volume/slice_volumes.hpp): slices are measured in
+// Several volumes (core/volume/slice/slice_volumes.hpp): slices are measured in
 // the first volume's index space; every volume is sampled at each slice and
 // overlapping segments combine as media whose extinctions add (combineMedia).
 //
@@ -58,10 +58,10 @@
 #include "core/base/rng.hpp"
 #include "core/sampling/pattern_set.hpp"
 #include "core/volume/volume_ray.hpp"
-#include "core/volume/segment_tables.hpp"
-#include "core/volume/slice_volumes.hpp"
-#include "core/volume/slices.hpp"
-#include "core/volume/slice_renderer.hpp"
+#include "core/volume/optics/segment_tables.hpp"
+#include "core/volume/slice/slice_volumes.hpp"
+#include "core/volume/slice/slices.hpp"
+#include "core/volume/slice/slice_renderer.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

@@ -27,7 +27,7 @@
 //   jitter      random offset of the first sample per ray (banding -> noise)
 //   ert         early ray termination once opacity reaches this (1 = off)
 //   skip_empty  skip the cells the transfer function shows nothing of
-//               (core/volume/visible_cells.hpp: min-max space leaping on the
+//               (core/volume/skip/visible_cells.hpp: min-max space leaping on the
 //               grid's own leaves, OpenVDB HDDA on each grid's index space,
 //               so any affine transform works); the image is unchanged, only
 //               fewer samples are taken. auto (the default) skips where it
@@ -35,7 +35,7 @@
 //               built once per process for the same volumes
 //               (sharedEmptySpaceSkipper); with a still camera, rays
 //               outside the visible blocks' screen footprint skip the
-//               march (core/volume/screen_footprint.hpp)
+//               march (core/volume/skip/screen_footprint.hpp)
 //   offset_pattern  per-pixel offsets of the first sample from a pattern set's
 //               third coordinate: interleaved:4x4 gives the 16 pixels of each
 //               tile 16 different strata of the step (Keller & Heidrich 4.3)

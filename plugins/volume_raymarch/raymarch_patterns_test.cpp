@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.hpp"
-#include "core/image/image_spectrum.hpp"
+#include "core/image/compare/image_spectrum.hpp"
 #include "tests/support/render_helpers.hpp"
 
 using namespace weft;

@@ -1,7 +1,7 @@
 #include "plugins/volume_raymarch/volume_march.hpp"
 
 #include "core/base/shared_cache.hpp"
-#include "core/volume/visible_cells.hpp"
+#include "core/volume/skip/visible_cells.hpp"
 #include "core/volume/volume_key.hpp"
 
 #include <algorithm>

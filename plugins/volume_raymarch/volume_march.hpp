@@ -35,11 +35,11 @@
 #include <optional>
 #include <vector>
 
-#include "core/volume/leaf_sampler.hpp"
-#include "core/volume/screen_footprint.hpp"
-#include "core/volume/visible_blocks.hpp"
-#include "core/volume/visible_cells.hpp"
-#include "core/volume/volume_bvh.hpp"
+#include "core/volume/grid/leaf_sampler.hpp"
+#include "core/volume/skip/screen_footprint.hpp"
+#include "core/volume/skip/visible_blocks.hpp"
+#include "core/volume/skip/visible_cells.hpp"
+#include "core/volume/media/volume_bvh.hpp"
 #include "core/volume/volume_motion.hpp"
 #include "core/scene/scene.hpp"
 #include "core/volume/volume_ray.hpp"
@@ -81,7 +81,7 @@ public:
     // Gaffer smoke, 0.58 full, 1.37x; data/smoke_small.vdb, 0.96 full, 0.85x).
     bool pays() const { return pays_; }
     // The image's pixels whose camera rays may add something: every
-    // visible box of every volume projected (core/volume/screen_footprint.hpp).
+    // visible box of every volume projected (core/volume/skip/screen_footprint.hpp).
     // None where a volume the transfer function shows has no blocks (the
     // HDDA then decides ray by ray).
     std::optional<ScreenFootprint> footprint(const std::vector<Volume>& volumes, const CameraRays& rays, int width, int height) const;

@@ -11,8 +11,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/volume/leaf_reach.hpp"
-#include "core/volume/octant_shift.hpp"
+#include "core/volume/grid/leaf_reach.hpp"
+#include "core/volume/grid/octant_shift.hpp"
 #include "core/volume/volume_ray.hpp"
 
 namespace weft {
@@ -21,7 +21,7 @@ namespace {
 
 // Where the cache's voxel 0 lies in the density's index space: a multiple
 // of the cache's leaf width below the active voxels, so cache coordinates are
-// positive (one top node per tree: core/volume/octant_shift.hpp) and density
+// positive (one top node per tree: core/volume/grid/octant_shift.hpp) and density
 // leaves map onto cache voxels alike.
 openvdb::Coord cacheOrigin(const openvdb::CoordBBox& active, int factor) { return widthBelow(active, 8 * factor); }
 

@@ -25,8 +25,8 @@
 
 #include <vector>
 
-#include "core/volume/leaf_sampler.hpp"
-#include "core/volume/visible_blocks.hpp"
+#include "core/volume/grid/leaf_sampler.hpp"
+#include "core/volume/skip/visible_blocks.hpp"
 
 #include "core/mesh/mesh_accel.hpp"
 #include "core/volume/volume.hpp"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/scene/camera.hpp"
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 #include "core/scene/scene.hpp"
 
 namespace weft {

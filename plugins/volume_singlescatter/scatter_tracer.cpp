@@ -4,13 +4,13 @@
 #include <cmath>
 #include <limits>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "core/lighting/brdf.hpp"
 #include "core/lighting/emitters.hpp"
 #include "core/lighting/surface_shading.hpp"
-#include "core/volume/leaf_sampler.hpp"
-#include "core/volume/medium.hpp"
-#include "core/volume/transmittance.hpp"
+#include "core/volume/grid/leaf_sampler.hpp"
+#include "core/volume/media/medium.hpp"
+#include "core/volume/media/transmittance.hpp"
 #include "core/volume/volume_motion.hpp"
 #include "core/volume/volume_ray.hpp"
 #include "plugins/volume_singlescatter/shared_caches.hpp"

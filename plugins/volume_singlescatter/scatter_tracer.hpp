@@ -31,11 +31,11 @@
 #include <optional>
 #include <vector>
 
-#include "core/base/render_context.hpp"
+#include "core/base/run/render_context.hpp"
 #include "core/base/rng.hpp"
 #include "core/mesh/mesh_accel.hpp"
-#include "core/volume/screen_footprint.hpp"
-#include "core/volume/volume_bvh.hpp"
+#include "core/volume/skip/screen_footprint.hpp"
+#include "core/volume/media/volume_bvh.hpp"
 #include "plugins/volume_singlescatter/light_cache.hpp"
 #include "plugins/volume_singlescatter/scatter_volume.hpp"
 
@@ -65,7 +65,7 @@ public:
     // seen false: the ray is outside footprint()'s pixels and skips the volumes.
     Vec3d radiance(const Ray& ray, float offset, double time, Row& row, Rng& rng, Vec3d& T, bool& surface, bool seen = true) const;
     // The pixels whose camera rays can take a sample: every volume's reaching
-    // boxes projected (core/volume/screen_footprint.hpp). None where a
+    // boxes projected (core/volume/skip/screen_footprint.hpp). None where a
     // volume marches its intersector's spans instead (emission, motion).
     std::optional<ScreenFootprint> footprint(const CameraRays& rays, int width, int height) const;
 

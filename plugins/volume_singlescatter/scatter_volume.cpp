@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/volume/octant_shift.hpp"
+#include "core/volume/grid/octant_shift.hpp"
 #include "plugins/volume_singlescatter/shared_caches.hpp"
 
 namespace weft {

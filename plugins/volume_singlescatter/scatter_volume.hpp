@@ -5,7 +5,7 @@
 // intersector needs uniform voxels; index-space rays work for any affine
 // transform), and the lengths that turn index units into voxel lengths.
 // The intersector's voxels are shifted by whole leaves so that their
-// coordinates are positive (core/volume/octant_shift.hpp); rays enter it
+// coordinates are positive (core/volume/grid/octant_shift.hpp); rays enter it
 // through occupancyRay, shifted alike, and the times along a ray are the same.
 // Where nothing marches its spans (camera rays follow the reaching blocks
 // and shadows come from the light cache of a still volume), neither the
@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "core/scene/scene.hpp"
-#include "core/volume/visible_blocks.hpp"
+#include "core/volume/skip/visible_blocks.hpp"
 #include "plugins/volume_singlescatter/scatter_params.hpp"
 
 namespace weft {

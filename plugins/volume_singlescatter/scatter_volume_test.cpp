@@ -3,7 +3,7 @@
 // its spans, and the light caches shared between renders of one process.
 #include <gtest/gtest.h>
 
-#include "core/volume/octant_shift.hpp"
+#include "core/volume/grid/octant_shift.hpp"
 #include "core/volume/volume.hpp"
 #include "plugins/volume_singlescatter/scatter_volume.hpp"
 #include "plugins/volume_singlescatter/shared_caches.hpp"

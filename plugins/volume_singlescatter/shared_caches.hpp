@@ -7,7 +7,7 @@
 // caches built and reused.
 #include <memory>
 
-#include "core/volume/visible_blocks.hpp"
+#include "core/volume/skip/visible_blocks.hpp"
 #include "plugins/volume_singlescatter/light_cache.hpp"
 
 namespace weft {

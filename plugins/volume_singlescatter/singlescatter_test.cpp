@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "core/volume/volume.hpp"
 #include "plugins/volume_singlescatter/shared_caches.hpp"
 #include "tests/support/render_helpers.hpp"

@@ -3,7 +3,7 @@
 // without writing a file.
 #include <gtest/gtest.h>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "core/base/rng.hpp"
 #include "tests/support/test_support.hpp"
 

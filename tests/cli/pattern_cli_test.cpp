@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft::test;

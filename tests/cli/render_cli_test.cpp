@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/vdb_fixtures.hpp"
 

@@ -1,4 +1,4 @@
-// The render option table (core/base/render_options.hpp) read three ways: the
+// The render option table (core/base/options/render_options.hpp) read three ways: the
 // command line, a batch job and a scene file's render block give the same
 // request, reject a bad value with the same text, and follow one precedence.
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/error.hpp"
-#include "core/base/render_options.hpp"
-#include "core/image/image_io.hpp"
+#include "core/base/options/render_options.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft::test;

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft;

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "plugins/host/trade/trade_metrics.hpp"
 #include "plugins/host/trade/tune_search.hpp"
 #include "tests/support/test_support.hpp"

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/vdb_fixtures.hpp"
 

@@ -1,5 +1,5 @@
-// Frame ranges, frame-numbered names and tile bands (core/base/frames.hpp).
-#include "core/base/frames.hpp"
+// Frame ranges, frame-numbered names and tile bands (core/base/options/frames.hpp).
+#include "core/base/options/frames.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 #pragma once
 // Fuzz target: EXR files as `weft diff`, `weft merge` and `weft filter`
-// read them (core/image/image_io.cpp through the OpenImageIO module), then
+// read them (core/image/io/image_io.cpp through the OpenImageIO module), then
 // what each command does next with the image: the comparison metrics, the
 // tile checks of a merge and the A-Trous filter's channel lookup.
-#include "core/image/exr_preflight.hpp"
-#include "core/image/image_compare.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/exr_preflight.hpp"
+#include "core/image/compare/image_compare.hpp"
+#include "core/image/io/image_io.hpp"
 #include "core/screen/atrous.hpp"
 #include "plugins/host/tile_merge.hpp"
 #include "tests/fuzz/fuzz_support.hpp"

@@ -11,8 +11,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/base/json_doc.hpp"
-#include "core/image/image_io.hpp"
+#include "core/base/files/json_doc.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/fuzz/exr_target.hpp"
 #include "tests/fuzz/mesh_target.hpp"
 #include "tests/fuzz/raw_target.hpp"

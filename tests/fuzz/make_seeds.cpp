@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "core/base/error.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "core/volume/volume.hpp"
 #include "plugins/technique.hpp"
 #include "tests/support/vdb_fixtures.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Fuzz target: headerless raw volumes (core/volume/raw_volume.cpp), as
+// Fuzz target: headerless raw volumes (core/volume/io/raw_volume.cpp), as
 // `weft convert` reads them. The first bytes of the input choose the spec
 // the way a command line would give it, through the option parsers:
 //   byte 0: sample type (an index into the type names)  byte 1: byte order
@@ -10,13 +10,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/volume/raw_volume.hpp"
+#include "core/volume/io/raw_volume.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 namespace weft::fuzz {
 
 // Names the option parser accepts, plus one it must refuse. Types added to
-// core/volume/raw_volume.hpp belong here too.
+// core/volume/io/raw_volume.hpp belong here too.
 inline constexpr const char* kRawTypeNames[] = {"u8", "u16", "f32", "i8", "i16", "i32", "u32", "f64", "x"};
 
 inline Outcome rawVolume(const std::uint8_t* data, std::size_t size) {

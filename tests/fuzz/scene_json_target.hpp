@@ -10,7 +10,7 @@
 
 #include <map>
 
-#include "core/base/render_options.hpp"
+#include "core/base/options/render_options.hpp"
 #include "core/scene/scene.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/technique.hpp"

@@ -12,9 +12,9 @@
 #include <map>
 #include <vector>
 
-#include "core/base/frames.hpp"
-#include "core/base/render_options.hpp"
-#include "core/volume/raw_volume.hpp"
+#include "core/base/options/frames.hpp"
+#include "core/base/options/render_options.hpp"
+#include "core/volume/io/raw_volume.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/render_job.hpp"
 #include "plugins/technique.hpp"

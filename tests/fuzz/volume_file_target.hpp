@@ -1,6 +1,6 @@
 #pragma once
 // Fuzz targets: the self-describing volumes `weft convert` imports
-// (core/volume/volume_import.cpp): NRRD, NumPy .npy and VTK legacy image
+// (core/volume/io/volume_import.cpp): NRRD, NumPy .npy and VTK legacy image
 // data. The input is the whole file, header and samples; its name gives the
 // format. What the header claims is planned (every field checked, the size
 // bounded), and when the samples are small enough to read quickly they are
@@ -8,7 +8,7 @@
 // lie inside the stated dims.
 #include <cmath>
 
-#include "core/volume/volume_import.hpp"
+#include "core/volume/io/volume_import.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 namespace weft::fuzz {

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "core/base/error.hpp"
-#include "core/image/image_compare.hpp"
+#include "core/image/compare/image_compare.hpp"
 #include "hwsim/replay.hpp"
 #include "oracles/oracle.hpp"
 #include "tests/support/render_helpers.hpp"

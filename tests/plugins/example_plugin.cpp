@@ -1,7 +1,7 @@
 // A minimal external plugin, built as example.weft.so: it registers
 // "example.gradient", which fills the image with a horizontal ramp whose
 // brightness is its one parameter.
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 #include "plugins/plugin_api.hpp"
 
 namespace {

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "core/volume/raw_volume.hpp"
+#include "core/volume/io/raw_volume.hpp"
 
 namespace weft::test {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image/image_compare.hpp"
+#include "core/image/compare/image_compare.hpp"
 #include "plugins/host/render_job.hpp"
 
 namespace weft::test {

@@ -1,6 +1,6 @@
 #pragma once
 // Transfer functions shared by the pre-integration tests.
-#include "core/volume/transfer_function.hpp"
+#include "core/volume/optics/transfer_function.hpp"
 
 namespace weft::test {
 

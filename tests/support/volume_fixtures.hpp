@@ -1,5 +1,5 @@
 #pragma once
-// Small in-memory volumes for the medium and transmittance tests.
+// Small in-memory volumes for the medium, transmittance, ray and slice tests.
 #include "core/volume/volume.hpp"
 
 namespace weft::test {
@@ -17,6 +17,19 @@ Volume cubeVolume(int res, const Vec3d& absorb, const Vec3d& scatter, const Dens
     Volume v;
     v.grid = grid;
     v.medium.absorb = absorb, v.medium.scatter = scatter;
+    computeStatistics(v);
+    return v;
+}
+
+// Sheared, anisotropic and moved away from the origin, with data in one corner.
+inline Volume skewedVolume() {
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(
+        openvdb::math::Mat4d(0.5, 0.1, 0.0, 0.0, 0.0, 0.25, 0.05, 0.0, 0.2, 0.0, 0.7, 0.0, 1.0, -2.0, 3.0, 1.0)));
+    grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(-5, 2, 0), openvdb::Coord(20, 17, 11)), 1.0f, true);
+    grid->tree().voxelizeActiveTiles();
+    Volume v;
+    v.grid = grid;
     computeStatistics(v);
     return v;
 }

@@ -1,4 +1,4 @@
-// Counters are declared once as handles (core/base/counters.hpp): every name
+// Counters are declared once as handles (core/base/run/counters.hpp): every name
 // a render records is a declared one, each name is declared once, and `weft
 // help counters` lists them with their meaning.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft::test;

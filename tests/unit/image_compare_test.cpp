@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "core/base/error.hpp"
-#include "core/image/image_compare.hpp"
+#include "core/image/compare/image_compare.hpp"
 
 #include <tbb/task_arena.h>
 

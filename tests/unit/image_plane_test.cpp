@@ -6,7 +6,7 @@
 #include <set>
 
 #include "core/base/error.hpp"
-#include "core/image/image_spectrum.hpp"
+#include "core/image/compare/image_spectrum.hpp"
 #include "core/sampling/image_plane.hpp"
 #include "plugins/host/render_job.hpp"
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.hpp"
-#include "core/base/json_doc.hpp"
+#include "core/base/files/json_doc.hpp"
 #include "core/scene/scene.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.hpp"
-#include "core/base/params.hpp"
+#include "core/base/options/params.hpp"
 
 using namespace weft;
 

@@ -12,7 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/base/error.hpp"
-#include "core/volume/preintegration.hpp"
+#include "core/volume/optics/preintegration.hpp"
 #include "core/volume/volume_ray.hpp"
 #include "tests/support/transfer_functions.hpp"
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "core/base/progress.hpp"
-#include "core/base/render_context.hpp"
+#include "core/base/run/progress.hpp"
+#include "core/base/run/render_context.hpp"
 #include "plugins/host/render_job.hpp"
 #include "plugins/technique.hpp"
 

@@ -13,8 +13,8 @@
 #include <filesystem>
 
 #include "core/scene/scene.hpp"
-#include "core/volume/blackbody.hpp"
-#include "core/volume/cie1931.hpp"
+#include "core/volume/optics/blackbody.hpp"
+#include "core/volume/optics/cie1931.hpp"
 #include "core/volume/volume_grids.hpp"
 #include "plugins/technique.hpp"
 #include "tests/support/render_helpers.hpp"

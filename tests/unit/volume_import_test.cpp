@@ -8,10 +8,10 @@
 #include <filesystem>
 
 #include "core/base/error.hpp"
-#include "core/volume/npy_header.hpp"
-#include "core/volume/nrrd_header.hpp"
-#include "core/volume/volume_import.hpp"
-#include "core/volume/vtk_image_header.hpp"
+#include "core/volume/io/npy_header.hpp"
+#include "core/volume/io/nrrd_header.hpp"
+#include "core/volume/io/volume_import.hpp"
+#include "core/volume/io/vtk_image_header.hpp"
 #include "tests/support/raw_samples.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/volume_files.hpp"

@@ -1,13 +1,13 @@
 // The image codec module (weft_oiio.so): OpenImageIO behind
-// core/image/image_codec.hpp, so that only processes that touch image files load it.
+// core/image/io/image_codec.hpp, so that only processes that touch image files load it.
 #include <OpenImageIO/imageio.h>
 
 #include <cstdio>
 #include <memory>
 #include <string>
 
-#include "core/base/physical_memory.hpp"
-#include "core/image/image_codec.hpp"
+#include "core/base/memory/physical_memory.hpp"
+#include "core/image/io/image_codec.hpp"
 
 namespace {
 
@@ -99,5 +99,5 @@ const weft::ImageCodec kCodec{weft::kImageCodecAbi, writeImage, readImage};
 
 }  // namespace
 
-// `const void*`, the type loadModule calls it through (core/base/module_loader.hpp).
+// `const void*`, the type loadModule calls it through (core/base/files/module_loader.hpp).
 extern "C" const void* weft_image_codec() { return &kCodec; }

@@ -46,5 +46,5 @@ const weft::MeshCodec kCodec{weft::kMeshCodecAbi, readPly};
 
 }  // namespace
 
-// `const void*`, the type loadModule calls it through (core/base/module_loader.hpp).
+// `const void*`, the type loadModule calls it through (core/base/files/module_loader.hpp).
 extern "C" const void* weft_mesh_codec() { return &kCodec; }

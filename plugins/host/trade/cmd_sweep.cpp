@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
 #include "plugins/host/command_line_monitor.hpp"
 #include "plugins/host/command.hpp"

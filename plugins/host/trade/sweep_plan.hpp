@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/base/render_options.hpp"
+#include "core/base/options/render_options.hpp"
 
 namespace weft {
 

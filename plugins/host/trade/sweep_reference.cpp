@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "core/base/error.hpp"
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "core/scene/scene.hpp"
 #include "plugins/technique.hpp"
 

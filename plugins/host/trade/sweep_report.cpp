@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-#include "core/base/atomic_file.hpp"
+#include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
 #include "core/base/pareto.hpp"
 

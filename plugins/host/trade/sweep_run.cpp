@@ -6,7 +6,7 @@
 #include <map>
 
 #include "core/base/error.hpp"
-#include "core/base/render_monitor.hpp"
+#include "core/base/run/render_monitor.hpp"
 
 namespace weft {
 

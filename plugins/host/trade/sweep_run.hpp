@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/base/counters.hpp"
+#include "core/base/run/counters.hpp"
 #include "plugins/host/trade/sweep_plan.hpp"
 #include "plugins/host/trade/sweep_reference.hpp"
 #include "plugins/host/trade/trade_metrics.hpp"

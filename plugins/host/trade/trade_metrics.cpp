@@ -1,7 +1,7 @@
 #include "plugins/host/trade/trade_metrics.hpp"
 
 #include "core/base/error.hpp"
-#include "core/image/image_compare.hpp"
+#include "core/image/compare/image_compare.hpp"
 
 namespace weft {
 

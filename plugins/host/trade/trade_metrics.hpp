@@ -1,11 +1,11 @@
 #pragma once
 // The error of a render against its reference, as weft sweep and weft tune
 // report it: the beauty image only (R, G, B, A; AOVs are not the picture),
-// with core/image/image_compare.hpp's metrics and LDR-FLIP (core/image/flip.hpp).
+// with core/image/compare/image_compare.hpp's metrics and LDR-FLIP (core/image/compare/flip.hpp).
 #include <string>
 #include <vector>
 
-#include "core/image/flip.hpp"
+#include "core/image/compare/flip.hpp"
 #include "core/image/image.hpp"
 
 namespace weft {

@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/base/render_options.hpp"
+#include "core/base/options/render_options.hpp"
 
 namespace weft {
 

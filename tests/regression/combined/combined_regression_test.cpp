@@ -6,8 +6,8 @@
 
 #include <filesystem>
 
-#include "core/image/image_io.hpp"
-#include "core/image/regression_case.hpp"
+#include "core/image/io/image_io.hpp"
+#include "core/image/compare/regression_case.hpp"
 #include "plugins/host/render_job.hpp"
 
 using namespace weft;

@@ -5,7 +5,7 @@
 // deliberately with tests/regression/cornell_vpl/run.sh --update.
 #include <gtest/gtest.h>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/support/render_helpers.hpp"
 
 using namespace weft;

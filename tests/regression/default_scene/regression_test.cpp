@@ -4,7 +4,7 @@
 // Regenerate deliberately with tests/regression/default_scene/run.sh --update.
 #include <gtest/gtest.h>
 
-#include "core/image/image_io.hpp"
+#include "core/image/io/image_io.hpp"
 #include "tests/support/render_helpers.hpp"
 
 using namespace weft;
