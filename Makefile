@@ -1,5 +1,5 @@
 # Convenience targets; the scripts are what the README and CI run.
-.PHONY: all demo test test-slow test-sanitize test-tsan fuzz bench trade clean
+.PHONY: all demo test test-slow test-sanitize test-tsan fuzz bench bench-build trade clean
 FUZZ_SECONDS ?= 60
 FUZZ_RUNS ?= -1
 all:
@@ -18,6 +18,8 @@ fuzz:
 	FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_RUNS=$(FUZZ_RUNS) bash scripts/fuzz.sh
 bench: all
 	bash bench/run.sh
+bench-build:
+	/usr/bin/python3 bench/cold_build.py
 trade: all
 	/usr/bin/python3 bench/trade_atlas.py
 clean:
