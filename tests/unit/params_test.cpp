@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
 #include "core/base/error.hpp"
+#include "core/base/options/param_value.hpp"
 #include "core/base/options/params.hpp"
+#include "core/base/options/render_options.hpp"
 
 using namespace weft;
 
@@ -62,6 +64,37 @@ TEST(Params, RejectsNonNumbersNonIntegersAndBadEnums) {
     EXPECT_NE(errorOf({{"count", "2.5"}}).find("not an integer"), std::string::npos);
     EXPECT_NE(errorOf({{"mode", "c"}}).find("one of a|b"), std::string::npos);
     EXPECT_NE(errorOf({{"jitter", "maybe"}}).find("true|false"), std::string::npos);
+}
+
+// One rule for --set parameters and the render options (--spp, --seed...):
+// a text one takes, the other takes, with the same canonical value.
+TEST(Params, TechniqueParametersAndRenderOptionsCheckNumbersAlike) {
+    const RenderOption* spp = findRenderOption("spp", kOnCommandLine);
+    ASSERT_NE(spp, nullptr);
+    const ParamTable sppTable("demo", {spp->spec});
+    for (const std::string text : {"16", "1e2", "16.0", "+5", "0x10", " 5", "5 ", "inf", "nan", "2.5", "0", "-3", "1e300", ""}) {
+        const ParamValue v = checkParamValue(spp->spec, text);
+        RenderRequest r;
+        bool optionTakes = true, paramTakes = true;
+        try {
+            applyRenderOption(r, *spp, text, "--spp");
+        } catch (const Error&) {
+            optionTakes = false;
+        }
+        try {
+            sppTable.parse({{"spp", text}});
+        } catch (const Error&) {
+            paramTakes = false;
+        }
+        EXPECT_EQ(optionTakes, v.fault == ParamValue::Fault::None) << "'" << text << "'";
+        EXPECT_EQ(paramTakes, optionTakes) << "'" << text << "'";
+        if (optionTakes) EXPECT_EQ(std::to_string(*r.spp), v.canonical) << "'" << text << "'";
+    }
+    EXPECT_EQ(checkParamValue(spp->spec, "16").canonical, "16");
+    EXPECT_EQ(checkParamValue(spp->spec, "1e2").canonical, "100");
+    EXPECT_EQ(checkParamValue(spp->spec, "+5").fault, ParamValue::Fault::NotNumber);
+    EXPECT_EQ(checkParamValue(spp->spec, "2.5").fault, ParamValue::Fault::NotInteger);
+    EXPECT_EQ(checkParamValue(spp->spec, "0").fault, ParamValue::Fault::OutOfRange);
 }
 
 TEST(Params, HelpTextListsEveryParameterWithRange) {

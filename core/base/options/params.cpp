@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/base/error.hpp"
+#include "core/base/options/param_value.hpp"
 
 namespace weft {
 
@@ -93,34 +94,54 @@ bool parseDouble(const std::string& text, double& out) {
 
 // Converts and range-checks one value; returns it with canonical text.
 std::pair<double, std::string> convert(const std::string& owner, const ParamSpec& spec, const std::string& text) {
-    switch (spec.type) {
-        case ParamType::Bool:
-            if (text == "true" || text == "1" || text == "on" || text == "yes") return {1, "true"};
-            if (text == "false" || text == "0" || text == "off" || text == "no") return {0, "false"};
-            badValue(owner, spec, text, "");
-        case ParamType::Enum:
-            for (const auto& c : spec.choices)
-                if (c == text) return {0, text};
-            badValue(owner, spec, text, "");
-        case ParamType::String:
-            if (spec.check) {
-                try { spec.check(text); } catch (const Error& e) { badValue(owner, spec, text, e.what()); }
-            }
-            return {0, text};
-        case ParamType::Int:
-        case ParamType::Float: {
-            double v = 0;
-            if (!parseDouble(text, v) || !std::isfinite(v)) badValue(owner, spec, text, "not a number");
-            if (spec.type == ParamType::Int && v != std::floor(v)) badValue(owner, spec, text, "not an integer");
-            if (spec.type == ParamType::Int && integerOutOfRange(text, spec)) badValue(owner, spec, text, "out of range");
-            if (v < spec.min || v > spec.max) badValue(owner, spec, text, "out of range");
-            return {v, spec.type == ParamType::Int ? std::to_string(static_cast<long long>(v)) : formatNumber(v)};
-        }
+    const ParamValue v = checkParamValue(spec, text);
+    switch (v.fault) {
+        case ParamValue::Fault::None: return {v.number, v.canonical};
+        case ParamValue::Fault::NotNumber: badValue(owner, spec, text, "not a number");
+        case ParamValue::Fault::NotInteger: badValue(owner, spec, text, "not an integer");
+        case ParamValue::Fault::OutOfRange: badValue(owner, spec, text, "out of range");
+        case ParamValue::Fault::Check: badValue(owner, spec, text, v.checkMessage);
+        default: badValue(owner, spec, text, "");
     }
-    badValue(owner, spec, text, "");
 }
 
 }  // namespace
+
+ParamValue checkParamValue(const ParamSpec& spec, const std::string& text) {
+    ParamValue v;
+    const auto fail = [&](ParamValue::Fault f) { v.fault = f; return v; };
+    switch (spec.type) {
+        case ParamType::Bool:
+            if (text == "true" || text == "1" || text == "on" || text == "yes") v.number = 1, v.canonical = "true";
+            else if (text == "false" || text == "0" || text == "off" || text == "no") v.canonical = "false";
+            else return fail(ParamValue::Fault::NotBool);
+            return v;
+        case ParamType::Enum:
+            for (const auto& c : spec.choices)
+                if (c == text) return v.canonical = text, v;
+            return fail(ParamValue::Fault::NotChoice);
+        case ParamType::String:
+            if (spec.check) {
+                try {
+                    spec.check(text);
+                } catch (const Error& e) {
+                    v.checkMessage = e.what();
+                    return fail(ParamValue::Fault::Check);
+                }
+            }
+            return v.canonical = text, v;
+        case ParamType::Int:
+        case ParamType::Float: {
+            if (!parseDouble(text, v.number) || !std::isfinite(v.number)) return fail(ParamValue::Fault::NotNumber);
+            if (spec.type == ParamType::Int && v.number != std::floor(v.number)) return fail(ParamValue::Fault::NotInteger);
+            if (v.number < spec.min || v.number > spec.max || (spec.type == ParamType::Int && integerOutOfRange(text, spec)))
+                return fail(ParamValue::Fault::OutOfRange);
+            v.canonical = spec.type == ParamType::Int ? std::to_string(static_cast<long long>(v.number)) : formatNumber(v.number);
+            return v;
+        }
+    }
+    return fail(ParamValue::Fault::NotChoice);
+}
 
 bool integerOutOfRange(const std::string& text, const ParamSpec& spec) {
     long long v = 0;

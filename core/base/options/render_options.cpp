@@ -8,6 +8,7 @@
 #include "core/base/error.hpp"
 #include "core/base/options/frames.hpp"
 #include "core/base/options/exr_options.hpp"
+#include "core/base/options/param_value.hpp"
 
 namespace weft {
 
@@ -98,37 +99,19 @@ std::vector<RenderOption> makeTable() {
     return t;
 }
 
-bool parseNumber(const std::string& text, double& out) {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    out = std::strtod(text.c_str(), &end);
-    return end == text.c_str() + text.size() && std::isfinite(out);
-}
-
 // The value in canonical text, or an Error whose message starts with the value.
 std::string checked(const ParamSpec& spec, const std::string& text) {
-    switch (spec.type) {
-        case ParamType::Bool:
-            if (text == "true" || text == "1" || text == "on" || text == "yes") return "true";
-            if (text == "false" || text == "0" || text == "off" || text == "no") return "false";
-            throw Error("'" + text + "' is not true or false");
-        case ParamType::Int:
-        case ParamType::Float: {
-            double v = 0;
-            if (!parseNumber(text, v)) throw Error("'" + text + "' is not a number");
-            if (spec.type == ParamType::Int && v != std::floor(v)) throw Error("'" + text + "' is not an integer");
-            if (v < spec.min || v > spec.max || (spec.type == ParamType::Int && integerOutOfRange(text, spec)))
-                throw Error(text + " is outside " + spec.allowedText());
-            return spec.type == ParamType::Int ? std::to_string(static_cast<long long>(v)) : formatNumber(v);
-        }
-        case ParamType::Enum:
-            if (std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end())
-                throw Error("'" + text + "' is not " + spec.allowedText());
-            return text;
-        default:
-            if (spec.check) spec.check(text);
-            return text;
+    const ParamValue v = checkParamValue(spec, text);
+    switch (v.fault) {
+        case ParamValue::Fault::None: return v.canonical;
+        case ParamValue::Fault::NotBool: throw Error("'" + text + "' is not true or false");
+        case ParamValue::Fault::NotNumber: throw Error("'" + text + "' is not a number");
+        case ParamValue::Fault::NotInteger: throw Error("'" + text + "' is not an integer");
+        case ParamValue::Fault::OutOfRange: throw Error(text + " is outside " + spec.allowedText());
+        case ParamValue::Fault::NotChoice: throw Error("'" + text + "' is not " + spec.allowedText());
+        case ParamValue::Fault::Check: throw Error(v.checkMessage);
     }
+    throw Error("'" + text + "' is not " + spec.allowedText());
 }
 
 // "LABEL 'v': why" when the message starts with the value, else "LABEL: message".
