@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/base/memory/large_buffer.hpp"
+#include "core/base/target_clones.hpp"
 
 namespace weft {
 
@@ -40,7 +41,7 @@ namespace {
 // -1..-r, times 1 / the weights' sum), so the result is the same to the
 // bit; over a run of pixels at once, it vectorises. Also compiled for
 // AVX2, chosen at load time (no FMA either way).
-[[gnu::target_clones("avx2", "default")]] void plainRun(const float* src, std::ptrdiff_t tap, const float* weights,
+WEFT_TARGET_CLONES("avx2", "default") void plainRun(const float* src, std::ptrdiff_t tap, const float* weights,
                                                        int radius, float inv, float* out, int n) {
     for (int i = 0; i < n; ++i) out[i] = weights[0] * src[i];
     for (int k = 1; k <= radius; ++k)

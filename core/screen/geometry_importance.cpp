@@ -14,6 +14,7 @@
 #include "core/base/error.hpp"
 #include "core/mesh/mesh_accel.hpp"
 #include "core/screen/sample_budget.hpp"
+#include "core/base/target_clones.hpp"
 
 namespace weft {
 
@@ -77,7 +78,7 @@ inline __attribute__((always_inline)) void accumulateOffset(const Planes& g, int
 #if defined(__clang__)
 #define WEFT_ROW_CLONES
 #else
-#define WEFT_ROW_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define WEFT_ROW_CLONES WEFT_TARGET_CLONES("arch=x86-64-v4", "arch=x86-64-v3", "default")
 #endif
 template <bool UseN, bool UseP>
 WEFT_ROW_CLONES void importanceRow(const Planes& g, int width, int height, const Window& win, int y, float* acc, float* out) {

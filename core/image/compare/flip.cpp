@@ -17,6 +17,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/memory/large_buffer.hpp"
+#include "core/base/target_clones.hpp"
 
 namespace weft {
 
@@ -202,7 +203,7 @@ inline float remapColorError(float distance, float cmax) {
 // out[x] += k * src[x] over a run of n pixels: the convolutions' inner
 // loop, also compiled for AVX2 and chosen at load time where the CPU has it
 // (no FMA either way: the same sums on any machine).
-[[gnu::target_clones("avx2", "default")]] void addScaledRun(float* out, const float* src, float k, int n) {
+WEFT_TARGET_CLONES("avx2", "default") void addScaledRun(float* out, const float* src, float k, int n) {
     for (int x = 0; x < n; ++x) out[x] += k * src[x];
 }
 
@@ -332,7 +333,7 @@ DisplayPlanes toYcxcz(const Image& img) {
 
 // Hunt-adjusted CIELAB planes of n CSF-filtered YCxCz pixels. Both images'
 // colours pass through this one loop, so the error is symmetric to the bit.
-[[gnu::target_clones("avx2", "default")]] void labRow(const float* __restrict y, const float* __restrict cx,
+WEFT_TARGET_CLONES("avx2", "default") void labRow(const float* __restrict y, const float* __restrict cx,
                                                       const float* __restrict cz, std::size_t n, float* __restrict L,
                                                       float* __restrict a, float* __restrict b) {
     const Affine3 toRgb = ycxczToRgb(), toXyz = rgbToRelXyz();
@@ -423,7 +424,7 @@ struct ErrorRowInputs {
     const float *L[2], *a[2], *b[2], *edges[2], *points[2];
 };
 
-[[gnu::target_clones("avx2", "default")]] void errorRow(const ErrorRowInputs& in, std::size_t n, float cmax, float* out) {
+WEFT_TARGET_CLONES("avx2", "default") void errorRow(const ErrorRowInputs& in, std::size_t n, float cmax, float* out) {
     for (std::size_t i = 0; i < n; ++i) {
         const float ec = remapColorError(hyab(in.L[0][i], in.a[0][i], in.b[0][i], in.L[1][i], in.a[1][i], in.b[1][i]), cmax);
         const float d = larger(std::abs(in.edges[0][i] - in.edges[1][i]), std::abs(in.points[0][i] - in.points[1][i])) * 0.707106781f;
