@@ -1,7 +1,5 @@
 #include "core/base/options/render_options.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
