@@ -20,6 +20,12 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def shown(src):
+    """A source as the tree names it; a generated one by its file name."""
+    rel = os.path.relpath(src, ROOT)
+    return os.path.basename(src) if rel.startswith("..") else rel
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
@@ -51,8 +57,9 @@ def main():
             parts = line.split(None, 3)
             if len(parts) < 4 or not re.match(r"^[\d.]+$", parts[0]):
                 continue
-            src = next((a for a in parts[3].split() if a.endswith((".cpp", ".c"))), None)
-            rows.append((float(parts[0]) + float(parts[1]), float(parts[2]), os.path.relpath(src, ROOT) if src else "(link)"))
+            # Sources, and the precompiled header's own compile (cmake_pch.hxx.cxx).
+            src = next((a for a in parts[3].split() if a.endswith((".cpp", ".c", ".cxx"))), None)
+            rows.append((float(parts[0]) + float(parts[1]), float(parts[2]), shown(src) if src else "(link)"))
         cpu = sum(r[0] for r in rows)
         compiles = [r for r in rows if r[2] != "(link)"]
         print(f"cold build of weft, {args.jobs} jobs, ccache off")

@@ -42,7 +42,7 @@ weft_configure_clang() {
       -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
       -DCMAKE_C_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" \
       -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" \
-      -DWEFT_BUILD_BENCH=OFF "$@"
+      -DWEFT_BUILD_BENCH=OFF -DWEFT_PCH=OFF "$@"
   fi
 }
 

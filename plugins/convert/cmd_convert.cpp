@@ -17,7 +17,7 @@
 #include "core/base/files/atomic_file.hpp"
 #include "core/base/error.hpp"
 #include "core/base/files/input_file.hpp"
-#include "core/volume/io/raw_volume.hpp"
+#include "core/volume/io/raw_samples.hpp"
 #include "core/volume/io/volume_import.hpp"
 #include "plugins/host/command.hpp"
 

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/volume/io/raw_volume.hpp"
+#include "core/volume/io/raw_samples.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 namespace weft::fuzz {

@@ -8,6 +8,7 @@
 // lie inside the stated dims.
 #include <cmath>
 
+#include "core/volume/io/raw_samples.hpp"
 #include "core/volume/io/volume_import.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 

@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "core/base/error.hpp"
-#include "core/volume/io/raw_volume.hpp"
+#include "core/volume/io/raw_samples.hpp"
 #include "tests/support/raw_samples.hpp"
 #include "tests/support/test_support.hpp"
 

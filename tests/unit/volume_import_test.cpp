@@ -10,6 +10,7 @@
 #include "core/base/error.hpp"
 #include "core/volume/io/npy_header.hpp"
 #include "core/volume/io/nrrd_header.hpp"
+#include "core/volume/io/raw_samples.hpp"
 #include "core/volume/io/volume_import.hpp"
 #include "core/volume/io/vtk_image_header.hpp"
 #include "tests/support/raw_samples.hpp"

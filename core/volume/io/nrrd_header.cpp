@@ -121,17 +121,17 @@ std::int64_t parseCount(const std::string& field, std::string_view text, std::in
     return v;
 }
 
-openvdb::Coord parseSizes(const std::string& value, const Parser& p) {
+openvdb::math::Coord parseSizes(const std::string& value, const Parser& p) {
     const auto parts = splitWhitespace(value);
     if (parts.size() != 3) throw p.bad("sizes", value, "expected 3 sizes");
-    openvdb::Coord dims;
+    openvdb::math::Coord dims;
     for (int i = 0; i < 3; ++i) dims[i] = int(parseCount("sizes", parts[i], 1, kMaxRawDim, p));
     return dims;
 }
 
-openvdb::Vec3d parseSpacings(const std::string& value, const Parser& p) {
+openvdb::math::Vec3d parseSpacings(const std::string& value, const Parser& p) {
     const auto parts = splitWhitespace(value);
-    openvdb::Vec3d s;
+    openvdb::math::Vec3d s;
     if (parts.size() != 3) throw p.bad("spacings", value, "expected 3 spacings");
     for (int i = 0; i < 3; ++i)
         if (!parseFinite(parts[i], s[i]) || !(s[i] > 0)) throw p.bad("spacings", value, "expected 3 positive finite numbers");
@@ -139,7 +139,7 @@ openvdb::Vec3d parseSpacings(const std::string& value, const Parser& p) {
 }
 
 // "(x,y,z)" with optional spaces; false when it is not one.
-bool parseVector(std::string_view text, openvdb::Vec3d& v) {
+bool parseVector(std::string_view text, openvdb::math::Vec3d& v) {
     text = trimSpace(text);
     if (text.size() < 2 || text.front() != '(' || text.back() != ')') return false;
     const std::vector<std::string> parts = splitOn(text.substr(1, text.size() - 2), ',');
@@ -150,7 +150,7 @@ bool parseVector(std::string_view text, openvdb::Vec3d& v) {
 }
 
 // Three vectors, each the world step along one index axis.
-openvdb::Mat3d parseDirections(const std::string& value, const Parser& p) {
+openvdb::math::Mat3d parseDirections(const std::string& value, const Parser& p) {
     std::vector<std::string_view> vectors;
     std::size_t pos = 0;
     while (pos < value.size()) {
@@ -163,9 +163,9 @@ openvdb::Mat3d parseDirections(const std::string& value, const Parser& p) {
         if (vectors.size() > 3) break;  // too many either way
     }
     if (vectors.size() != 3) throw p.bad("space directions", value, "expected 3 vectors (x,y,z)");
-    openvdb::Mat3d m;
+    openvdb::math::Mat3d m;
     for (int c = 0; c < 3; ++c) {
-        openvdb::Vec3d v;
+        openvdb::math::Vec3d v;
         if (vectors[c] == "none") throw p.bad("space directions", value, "an axis without a direction ('none') is not a spatial axis");
         if (!parseVector(vectors[c], v)) throw p.bad("space directions", value, "expected 3 vectors (x,y,z) of finite numbers");
         for (int r = 0; r < 3; ++r) m(r, c) = v[r];
@@ -200,10 +200,10 @@ void readGeometry(const Fields& f, VolumeHeader& h, const Parser& p) {
         h.stated.spacing = true;
     }
     if (f.count("space directions")) {
-        const openvdb::Mat3d steps = parseDirections(f.at("space directions"), p);
+        const openvdb::math::Mat3d steps = parseDirections(f.at("space directions"), p);
         checkDirection(steps, p.file + ": NRRD field 'space directions' " + quoteValue(f.at("space directions")));
         for (int c = 0; c < 3; ++c) {
-            const double length = openvdb::Vec3d(steps(0, c), steps(1, c), steps(2, c)).length();
+            const double length = openvdb::math::Vec3d(steps(0, c), steps(1, c), steps(2, c)).length();
             h.spec.spacing[c] = length;
             for (int r = 0; r < 3; ++r) h.spec.direction(r, c) = steps(r, c) / length;
         }

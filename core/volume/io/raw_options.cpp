@@ -7,13 +7,13 @@
 #include "core/base/error.hpp"
 #include "core/base/world_limit.hpp"
 #include "core/volume/io/header_text.hpp"
-#include "core/volume/io/raw_volume.hpp"
+#include "core/volume/io/raw_samples.hpp"
 
 namespace weft {
 
 namespace {
 
-std::string coordText(const openvdb::Coord& c) {
+std::string coordText(const openvdb::math::Coord& c) {
     return std::to_string(c.x()) + "," + std::to_string(c.y()) + "," + std::to_string(c.z());
 }
 
@@ -36,21 +36,21 @@ constexpr TypeName kTypes[] = {{RawType::U8, "u8", 1},  {RawType::I8, "i8", 1}, 
                                {RawType::I16, "i16", 2}, {RawType::U32, "u32", 4}, {RawType::I32, "i32", 4},
                                {RawType::F32, "f32", 4}, {RawType::F64, "f64", 8}};
 
-bool isIdentity(const openvdb::Mat3d& m) {
+bool isIdentity(const openvdb::math::Mat3d& m) {
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
             if (m(r, c) != (r == c ? 1.0 : 0.0)) return false;
     return true;
 }
 
-openvdb::math::Transform::Ptr spacingTransform(const openvdb::Vec3d& s) {
+openvdb::math::Transform::Ptr spacingTransform(const openvdb::math::Vec3d& s) {
     if (s.x() == s.y() && s.y() == s.z()) return openvdb::math::Transform::createLinearTransform(s.x());
     return std::make_shared<openvdb::math::Transform>(std::make_shared<openvdb::math::ScaleMap>(s));
 }
 
 }  // namespace
 
-openvdb::Coord parseRawDims(const std::string& text) {
+openvdb::math::Coord parseRawDims(const std::string& text) {
     const std::vector<std::string> parts = splitOn(text, ',');
     const Error bad("--dims '" + text + "': expected 3 positive integers X,Y,Z (e.g. 256,256,128)");
     if (parts.size() != 3) throw bad;
@@ -66,28 +66,28 @@ openvdb::Coord parseRawDims(const std::string& text) {
             throw Error("--dims '" + text + "': " + parts[i] + " voxels along an axis is more than weft accepts (" +
                         std::to_string(kMaxRawDim) + ")");
     }
-    return openvdb::Coord(int(d[0]), int(d[1]), int(d[2]));
+    return openvdb::math::Coord(int(d[0]), int(d[1]), int(d[2]));
 }
 
-openvdb::Vec3d parseRawSpacing(const std::string& text) {
-    openvdb::Vec3d s;
+openvdb::math::Vec3d parseRawSpacing(const std::string& text) {
+    openvdb::math::Vec3d s;
     if (!parseNumbers(text, 3, s.asPointer()) || !(s.x() > 0 && s.y() > 0 && s.z() > 0))
         throw Error("--spacing '" + text + "': expected 3 positive numbers sx,sy,sz (e.g. 1,1,2.5)");
     return s;
 }
 
-openvdb::Vec3d parseRawOrigin(const std::string& text) {
-    openvdb::Vec3d o;
+openvdb::math::Vec3d parseRawOrigin(const std::string& text) {
+    openvdb::math::Vec3d o;
     if (!parseNumbers(text, 3, o.asPointer()))
         throw Error("--origin '" + text + "': expected 3 finite numbers x,y,z (e.g. -120,-120,40.5)");
     return o;
 }
 
-openvdb::Mat3d parseRawDirection(const std::string& text) {
+openvdb::math::Mat3d parseRawDirection(const std::string& text) {
     double v[9];
     if (!parseNumbers(text, 9, v))
         throw Error("--direction '" + text + "': expected 9 finite numbers, the 3x3 matrix row by row (e.g. 1,0,0,0,1,0,0,0,1)");
-    const openvdb::Mat3d m(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
+    const openvdb::math::Mat3d m(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
     checkDirection(m, "--direction '" + text + "'");
     return m;
 }
@@ -99,10 +99,10 @@ double parseRawBackground(const std::string& text) {
     return v;
 }
 
-void checkDirection(const openvdb::Mat3d& m, const std::string& what) {
+void checkDirection(const openvdb::math::Mat3d& m, const std::string& what) {
     double lengths = 1.0;
     for (int c = 0; c < 3; ++c) {
-        const openvdb::Vec3d column(m(0, c), m(1, c), m(2, c));
+        const openvdb::math::Vec3d column(m(0, c), m(1, c), m(2, c));
         if (!std::isfinite(column.x()) || !std::isfinite(column.y()) || !std::isfinite(column.z()))
             throw Error(what + ": the direction matrix must hold finite numbers");
         lengths *= column.length();
@@ -180,7 +180,7 @@ openvdb::math::Transform::Ptr rawTransform(const RawVolumeSpec& spec) {
     checkPlacement(spec);
     if (isIdentity(spec.direction)) {
         auto transform = spacingTransform(spec.spacing);
-        if (spec.origin != openvdb::Vec3d(0.0)) transform->postTranslate(spec.origin);
+        if (spec.origin != openvdb::math::Vec3d(0.0)) transform->postTranslate(spec.origin);
         return transform;
     }
     checkDirection(spec.direction, "the grid transform");

@@ -1,4 +1,4 @@
-#include "core/volume/io/raw_volume.hpp"
+#include "core/volume/io/raw_samples.hpp"
 
 #include <openvdb/tools/Dense.h>
 

@@ -2,13 +2,17 @@
 // Dense volumes as scanners and the classic volume data sets ship them:
 // X*Y*Z samples, x fastest, then y, then z, either headerless ("raw" files,
 // optionally gzip-compressed) or after a header (NRRD, NumPy, VTK; see
-// volume_import.hpp). They become sparse float grids: values kept as numbers
-// (u8 stays 0..255, Hounsfield units stay -1000 for air), samples equal to
-// the background value inactive.
+// volume_import.hpp). They become sparse float grids (raw_samples.hpp reads
+// them): values kept as numbers (u8 stays 0..255, Hounsfield units stay
+// -1000 for air), samples equal to the background value inactive. This
+// header describes them with OpenVDB's math types only, so the header
+// parsers compile without OpenVDB's grids.
 #include <cstdint>
 #include <string>
 
-#include <openvdb/openvdb.h>
+#include <openvdb/math/Coord.h>
+#include <openvdb/math/Mat3.h>
+#include <openvdb/math/Vec3.h>
 
 namespace weft {
 
@@ -19,14 +23,14 @@ enum class ByteOrder { Little, Big };
 enum class SampleEncoding { Raw, Gzip, Ascii };
 
 struct RawVolumeSpec {
-    openvdb::Coord dims{0, 0, 0};  // samples along x, y, z
+    openvdb::math::Coord dims{0, 0, 0};  // samples along x, y, z
     RawType type = RawType::U8;
     ByteOrder byteOrder = ByteOrder::Little;  // of multi-byte samples
-    openvdb::Vec3d spacing{1.0, 1.0, 1.0};    // world size of one voxel
-    openvdb::Vec3d origin{0.0, 0.0, 0.0};     // world position of voxel (0,0,0)
+    openvdb::math::Vec3d spacing{1.0, 1.0, 1.0};    // world size of one voxel
+    openvdb::math::Vec3d origin{0.0, 0.0, 0.0};     // world position of voxel (0,0,0)
     // Columns: the world directions of the index x, y and z axes, so that
     // world = origin + direction * diag(spacing) * (i, j, k).
-    openvdb::Mat3d direction = openvdb::Mat3d::identity();
+    openvdb::math::Mat3d direction = openvdb::math::Mat3d::identity();
     // Samples equal to it (after conversion to float) are inactive, and it
     // is the grid's background: 0 for densities, e.g. -1000 (air) for CT.
     double background = 0.0;
@@ -50,10 +54,10 @@ inline constexpr std::int64_t kMaxRawDim = std::int64_t(1) << 30;
 inline constexpr std::uint64_t kMaxRawBytes = std::uint64_t(1) << 40;  // 1 TiB
 
 // Option text parsers; errors name the option and the text.
-openvdb::Coord parseRawDims(const std::string& text);        // "X,Y,Z", positive integers
-openvdb::Vec3d parseRawSpacing(const std::string& text);     // "sx,sy,sz", positive finite numbers
-openvdb::Vec3d parseRawOrigin(const std::string& text);      // "x,y,z", finite numbers
-openvdb::Mat3d parseRawDirection(const std::string& text);   // 9 finite numbers, row-major, not singular
+openvdb::math::Coord parseRawDims(const std::string& text);        // "X,Y,Z", positive integers
+openvdb::math::Vec3d parseRawSpacing(const std::string& text);     // "sx,sy,sz", positive finite numbers
+openvdb::math::Vec3d parseRawOrigin(const std::string& text);      // "x,y,z", finite numbers
+openvdb::math::Mat3d parseRawDirection(const std::string& text);   // 9 finite numbers, row-major, not singular
 double parseRawBackground(const std::string& text);          // a finite number within float range
 RawType parseRawType(const std::string& text);               // u8|i8|u16|i16|u32|i32|f32|f64
 ByteOrder parseByteOrder(const std::string& text);           // little|big
@@ -64,26 +68,12 @@ std::size_t rawTypeBytes(RawType type);
 
 // Throws "<what>: ..." unless every entry is finite and the matrix is far
 // from singular (its determinant against the product of its column lengths).
-void checkDirection(const openvdb::Mat3d& direction, const std::string& what);
+void checkDirection(const openvdb::math::Mat3d& direction, const std::string& what);
 
 // Bytes the samples take; throws when the product overflows or is absurd.
 std::uint64_t rawByteCount(const RawVolumeSpec& spec);
 
 // "--dims 256,256,256 --type u8", how errors describe what was asked for.
 std::string describeRawSpec(const RawVolumeSpec& spec);
-
-// origin + direction * diag(spacing): a scale map when the direction is the
-// identity (plus a translation for an origin), else an affine map.
-openvdb::math::Transform::Ptr rawTransform(const RawVolumeSpec& spec);
-
-// Reads the samples into a float grid named spec.gridName with background
-// spec.background and transform rawTransform(spec). Throws weft::Error when
-// the file is missing, unreadable, corrupt, holds a different number of
-// bytes than the spec needs, or holds non-finite floats or doubles beyond
-// float range.
-openvdb::FloatGrid::Ptr readVolumeSamples(const RawDataSource& source, const RawVolumeSpec& spec);
-
-// A headerless file: the whole of PATH, gzip when it ends in ".gz".
-openvdb::FloatGrid::Ptr readRawVolume(const std::string& path, const RawVolumeSpec& spec);
 
 }  // namespace weft

@@ -40,11 +40,11 @@ namespace {
 
 // The options, checked before any file is opened.
 struct ParsedOptions {
-    std::optional<openvdb::Coord> dims;
+    std::optional<openvdb::math::Coord> dims;
     std::optional<RawType> type;
     std::optional<ByteOrder> byteOrder;
-    std::optional<openvdb::Vec3d> spacing, origin;
-    std::optional<openvdb::Mat3d> direction;
+    std::optional<openvdb::math::Vec3d> spacing, origin;
+    std::optional<openvdb::math::Mat3d> direction;
     std::optional<double> background;
 };
 
