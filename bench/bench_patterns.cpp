@@ -67,7 +67,7 @@ void poisson() {
 
 RenderRequest request(const std::string& input, const std::string& res, int spp, std::vector<std::string> sets, int threads) {
     RenderRequest r;
-    r.input = input, r.resolution = res, r.spp = spp, r.threads = threads, r.sets = std::move(sets);
+    r.input = input, r.resolution = parseResolution(res), r.spp = spp, r.threads = threads, r.sets = std::move(sets);
     return r;
 }
 

@@ -153,7 +153,7 @@ public:
         RenderRequest r = request();
         r.technique = std::move(technique);
         for (const auto& [k, v] : params) r.sets.push_back(py::str(k).cast<std::string>() + "=" + py::str(v).cast<std::string>());
-        if (res) r.resolution = std::to_string(res->first) + "x" + std::to_string(res->second);
+        if (res) r.resolution = Resolution{res->first, res->second};
         r.spp = spp;
         r.seed = seed;
         r.threads = threads;

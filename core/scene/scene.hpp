@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/base/options/render_options.hpp"
+#include "core/base/options/scene_render.hpp"
 #include "core/scene/camera.hpp"
 #include "core/mesh/mesh.hpp"
 #include "core/volume/volume.hpp"
@@ -27,11 +27,6 @@ struct Light {
     double intensity = 1.0;
 };
 
-// A scene file's "render" block, read through the render option table
-// (core/base/options/render_options.hpp): only technique, resolution, spp, seed and
-// set/params may be set there; the command line's values win over them.
-using SceneRenderSettings = RenderRequest;
-
 class MeshAccel;
 class Emitters;
 struct MeshCache;
@@ -46,7 +41,7 @@ struct Scene {
     std::vector<TriangleMesh> meshes;  // material ids index `materials`
     std::vector<Material> materials;
     std::vector<Light> lights;
-    SceneRenderSettings render;
+    SceneRender render;  // the file's "render" block (read through core/base/options/render_options.hpp); the command line wins
 
     BBoxd worldBox() const;
     // The camera at shutter time u in [0, 1): `camera` unless it moves.

@@ -458,8 +458,8 @@ std::set<std::string> keysOf(const json& object) {
 
 // The render block goes through the same table as the command line and batch
 // jobs; errors point at the key's position.
-void readRender(const ObjectReader& r, SceneRenderSettings& out) {
-    readRenderOptions(out, r.value(), kInScene, [&](const std::string& key, const std::string& msg) {
+void readRender(const ObjectReader& r, SceneRender& out) {
+    readSceneRender(out, r.value(), [&](const std::string& key, const std::string& msg) {
         r.fail(key, msg);
     });
 }
@@ -514,10 +514,7 @@ Scene loadJsonScene(const std::string& path, std::optional<double> aspect, std::
     if (top.has("meshes")) forEachInArray(doc, "/meshes", "meshes", [&](const std::string& p) { readMesh(meshAt(p), baseDir, scene); });
     if (!top.has("camera") && (!scene.volumes.empty() || !scene.meshes.empty())) {
         double sceneAspect = 1.0;
-        if (scene.render.resolution) {
-            const auto [w, h] = parseResolution(*scene.render.resolution);
-            sceneAspect = double(w) / h;
-        }
+        if (const auto& res = scene.render.resolution) sceneAspect = double(res->width) / res->height;
         scene.camera = Camera::framing(scene.worldBox(), 40.0, aspect.value_or(sceneAspect));
     }
     settleMotion(scene);

@@ -57,7 +57,7 @@ std::vector<int> parseCounts(const std::string& text) {
 Image renderAnalytic(const ReportOptions& o, const std::string& scene, std::vector<std::string> sets, int spp) {
     RenderRequest r;
     r.input = "builtin:" + scene;
-    r.resolution = o.resolution;
+    r.resolution = parseResolution(o.resolution);
     r.spp = spp;
     r.seed = o.seed;
     r.threads = o.threads;

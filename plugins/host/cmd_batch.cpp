@@ -32,7 +32,7 @@ using nlohmann::json;
 RenderRequest requestOf(const json& job, const std::string& where) {
     if (!job.is_object()) throw Error(where + ": a job must be an object");
     RenderRequest r;
-    readRenderOptions(r, job, kInBatchJob, [&](const std::string&, const std::string& msg) { throw Error(where + ": " + msg); });
+    readRenderOptions(r, job, [&](const std::string&, const std::string& msg) { throw Error(where + ": " + msg); });
     if (r.input.empty() || r.output.empty()) throw Error(where + ": 'input' and 'output' are required");
     if (r.technique) r.technique = techniques().get(*r.technique).name;
     validateRequest(r);
@@ -57,7 +57,7 @@ std::vector<RenderRequest> loadBatch(const std::string& path) {
         try {
             const json& job = doc["jobs"][i];
             const RenderRequest r = requestOf(job, where);
-            for (RenderRequest& q : !r.frames ? std::vector<RenderRequest>{r} : requestsForFrames(r, parseFrameRange(*r.frames)))
+            for (RenderRequest& q : !r.frames ? std::vector<RenderRequest>{r} : requestsForFrames(r, *r.frames))
                 all.push_back(std::move(q));
         } catch (const json::exception& e) {
             throw Error(where + ": " + e.what());

@@ -13,6 +13,7 @@
 
 #include "plugins/host/command.hpp"
 #include "plugins/host/help_text.hpp"
+#include "plugins/host/render_cli.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {

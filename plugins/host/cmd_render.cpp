@@ -9,6 +9,7 @@
 #include "core/base/options/render_options.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/chain.hpp"
+#include "plugins/host/render_cli.hpp"
 #include "plugins/host/render_job.hpp"
 
 namespace weft {
@@ -20,7 +21,7 @@ struct RenderCommand {
     std::vector<std::pair<const RenderOption*, std::string>> given;
     RenderRequest request() const {
         RenderRequest r;
-        for (const auto& [option, text] : given) applyRenderOption(r, *option, text, option->label(kOnCommandLine));
+        for (const auto& [option, text] : given) applyRenderOption(r, *option, text, commandLineLabel(*option));
         return r;
     }
 };
@@ -31,24 +32,25 @@ std::vector<RenderRequest> requestsOf(const RenderCommand& c) {
     const RenderRequest r = c.request();
     validateRequest(r);
     if (!r.frames) return {r};
-    return requestsForFrames(r, parseFrameRange(*r.frames));
+    return requestsForFrames(r, *r.frames);
 }
 
 // One CLI11 option per row of the render option table.
 void addOption(CLI::App& cmd, const std::shared_ptr<RenderCommand>& c, const RenderOption& o) {
     const RenderOption* p = &o;
+    const std::string names = commandLineNames(o);
     const std::string doc = o.spec.doc + (o.spec.defaultValue.empty() ? "" : " (default " + o.spec.defaultValue + ")");
     if (o.spec.type == ParamType::Bool) {
-        cmd.add_flag_function(o.cli, [c, p](std::int64_t) { c->given.emplace_back(p, "true"); }, doc);
+        cmd.add_flag_function(names, [c, p](std::int64_t) { c->given.emplace_back(p, "true"); }, doc);
         return;
     }
     if (o.repeated) {
-        cmd.add_option_function<std::vector<std::string>>(o.cli, [c, p](const std::vector<std::string>& values) {
+        cmd.add_option_function<std::vector<std::string>>(names, [c, p](const std::vector<std::string>& values) {
             for (const std::string& v : values) c->given.emplace_back(p, v);
         }, doc)->allow_extra_args(false);
         return;
     }
-    auto* option = cmd.add_option_function<std::string>(o.cli, [c, p](const std::string& v) { c->given.emplace_back(p, v); }, doc);
+    auto* option = cmd.add_option_function<std::string>(names, [c, p](const std::string& v) { c->given.emplace_back(p, v); }, doc);
     if (o.spec.name == "input") option->required();
 }
 

@@ -17,6 +17,7 @@
 #include "core/scene/scene_budget.hpp"
 #include "plugins/host/command.hpp"
 #include "plugins/host/command_line_monitor.hpp"
+#include "plugins/host/render_cli.hpp"
 #include "plugins/technique.hpp"
 
 namespace weft {
@@ -61,13 +62,11 @@ void refuseInputsAsOutputs(const RenderRequest& r) {
     if (!r.stats.empty()) refuseInputAsOutput(r.stats, "stats");
 }
 
-// `q` is the effective request (effectiveRequest): every scene option is set.
-RenderSettings settingsFor(const RenderRequest& q) {
+RenderSettings settingsFor(const EffectiveRender& q) {
     RenderSettings s;
-    std::tie(s.width, s.height) = parseResolution(*q.resolution);
-    s.spp = *q.spp;
-    checkRenderNumber("spp", s.spp, kOnCommandLine);  // requests built in code skip the table
-    s.seed = *q.seed;
+    s.width = q.resolution.width, s.height = q.resolution.height;
+    s.spp = q.spp;
+    s.seed = q.seed;
     return s;
 }
 
@@ -89,9 +88,8 @@ Metadata metadataFor(const RenderRequest& r, const std::string& technique, const
 }
 
 // Tile metadata: merge checks a set against it, and places each band.
-void addTileMetadata(Metadata& md, const std::string& tile, const ImageWindow& w, int width, int height) {
-    const auto [index, count] = parseTileSpec(tile);
-    md.emplace_back("weft:tile", std::to_string(index) + "/" + std::to_string(count));
+void addTileMetadata(Metadata& md, const TileSpec& tile, const ImageWindow& w, int width, int height) {
+    md.emplace_back("weft:tile", tile.text());
     md.emplace_back("weft:tile:full_resolution", std::to_string(w.fullWidth) + "x" + std::to_string(w.fullHeight));
     md.emplace_back("weft:tile:data_window", std::to_string(w.x) + " " + std::to_string(w.y) + " " +
                                                  std::to_string(w.x + width - 1) + " " + std::to_string(w.y + height - 1));
@@ -178,19 +176,19 @@ double sceneBytes(const Scene& scene) {
 }
 
 void validateRequest(const RenderRequest& r) {
-    if (!r.tile.empty()) parseTileSpec(r.tile);
-    // Requests built in code (tests, chains) have not been through the table.
-    checkRenderNumber("threads", r.threads, kOnCommandLine);
-    checkRenderNumber("max-memory", r.maxMemoryGiB, kOnCommandLine);
-    if (r.spp) checkRenderNumber("spp", *r.spp, kOnCommandLine);
+    // Requests built in code (tests, chains, Python) have not been through the table.
+    if (r.tile) requireValid(*r.tile);
+    checkRenderNumber("threads", r.threads);
+    checkRenderNumber("max-memory", r.maxMemoryGiB);
+    if (r.spp) checkRenderNumber("spp", *r.spp);
     // Against the table's range exactly, not through a double (2^53 + 1 would read as 2^53).
     if (const RenderOption* seed = findRenderOption("seed", kOnCommandLine); r.seed && seed) {
         const std::string text = std::to_string(*r.seed);
-        if (integerOutOfRange(text, seed->spec)) throw Error(seed->label(kOnCommandLine) + " " + text + " is outside " + seed->spec.allowedText());
+        if (integerOutOfRange(text, seed->spec)) throw Error(commandLineLabel(*seed) + " " + text + " is outside " + seed->spec.allowedText());
     }
     if (r.resolution) {
-        const auto [w, h] = parseResolution(*r.resolution);
-        checkMemory(r, w, h, r.technique.value_or(defaultTechnique(r.sets)), 0);
+        requireValid(*r.resolution);
+        checkMemory(r, r.resolution->width, r.resolution->height, r.technique.value_or(defaultTechnique(r.sets)), 0);
     }
     std::map<std::string, std::string> given;
     for (const std::string& kv : r.sets) given.insert(splitKeyValue(kv, "--set"));
@@ -202,8 +200,8 @@ void validateRequest(const RenderRequest& r) {
 
 std::optional<double> requestAspect(const RenderRequest& r) {
     if (!r.resolution) return std::nullopt;
-    const auto [w, h] = parseResolution(*r.resolution);
-    return double(w) / h;
+    requireValid(*r.resolution);  // a zero height would divide by zero
+    return double(r.resolution->width) / r.resolution->height;
 }
 
 LoadedScene loadRequestScene(const RenderRequest& r) {
@@ -224,11 +222,11 @@ RenderOutcome renderToImage(const RenderRequest& r, const std::function<void()>&
 }
 
 CheckedRender checkRender(const RenderRequest& r, const Scene& scene) {
-    CheckedRender c{effectiveRequest(r, scene.render), {}};  // the one precedence rule
-    const RenderRequest& q = c.effective;
-    const RenderSettings s = settingsFor(q);
-    checkMemory(r, s.width, s.height, *q.technique, sceneBytes(scene));  // the scene's own resolution and technique
-    const TechniqueInfo& info = techniques().get(*q.technique);
+    CheckedRender c{effectiveRender(r, scene.render), {}};  // the one precedence rule
+    const EffectiveRender& q = c.effective;
+    checkRenderNumber("spp", q.spp);  // requests built in code skip the table
+    checkMemory(r, q.resolution.width, q.resolution.height, q.technique, sceneBytes(scene));  // the scene's own resolution and technique
+    const TechniqueInfo& info = techniques().get(q.technique);
     std::map<std::string, std::string> given;
     for (const std::string& kv : q.sets) {
         auto [k, v] = splitKeyValue(kv, "--set");
@@ -254,17 +252,16 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     ctx.timings.add("load", loaded.loadMs);
     ctx.timings.monitor = monitor;
     const CheckedRender checked = checkRender(r, scene);
-    const RenderRequest& q = checked.effective;
+    const EffectiveRender& q = checked.effective;
     const ParamSet& params = checked.params;
     ctx.settings = settingsFor(q);
     ctx.settings.monitor = monitor;
     RowBand band{0, ctx.settings.height};
-    if (!r.tile.empty()) {
-        const auto [index, count] = parseTileSpec(r.tile);
-        band = tileRows(ctx.settings.height, index, count);
+    if (r.tile) {
+        band = tileRows(ctx.settings.height, r.tile->index, r.tile->count);
         ctx.settings.rowBegin = band.begin, ctx.settings.rowEnd = band.end;
     }
-    const std::string name = *q.technique;
+    const std::string name = q.technique;
     const TechniqueInfo& info = techniques().get(name);
     char stage[160];
     std::snprintf(stage, sizeof stage, "%s at %dx%d", name.c_str(), ctx.settings.width, ctx.settings.height);
@@ -291,9 +288,9 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
         std::fprintf(stderr, "weft: warning: %s produced %lld NaN/Inf values (written as 0)\n", name.c_str(), (long long)bad);
     }
     out.window = ImageWindow{0, band.begin, out.image.width(), out.image.height()};
-    if (!r.tile.empty()) out.image = cropRows(out.image, band.begin, band.end);
+    if (r.tile) out.image = cropRows(out.image, band.begin, band.end);
     out.counters = ctx.counters.merged();
-    out.metadata = metadataFor(q, name, params, ctx.settings, out.counters);
+    out.metadata = metadataFor(r, name, params, ctx.settings, out.counters);
     if (r.frame) out.metadata.emplace_back("weft:frame", std::to_string(*r.frame));
     for (std::size_t i = 0; i < scene.volumes.size(); ++i) {  // what each role of an emitting or moving volume read
         const Volume& v = scene.volumes[i];
@@ -303,7 +300,7 @@ RenderOutcome renderLoadedScene(const RenderRequest& r, const LoadedScene& loade
     }
     if (!scene.shutter.instant())
         out.metadata.emplace_back("weft:shutter", formatNumber(scene.shutter.open) + " " + formatNumber(scene.shutter.close));
-    if (!r.tile.empty()) addTileMetadata(out.metadata, r.tile, out.window, out.image.width(), out.image.height());
+    if (r.tile) addTileMetadata(out.metadata, *r.tile, out.window, out.image.width(), out.image.height());
     out.metadata.emplace_back("weft:complete", "1");
     out.timingsMs = ctx.timings.entries();
     return out;

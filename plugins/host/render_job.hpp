@@ -25,9 +25,10 @@ struct RenderOutcome {
     std::vector<std::pair<std::string, double>> timingsMs;
 };
 
-// Checks what does not depend on the scene or the frame (resolution, tile,
-// threads, outputs, and --set against the technique's table when the
-// technique is known without loading the scene); throws on the first problem.
+// Checks what does not depend on the scene or the frame (the ranges of
+// values a request built in code may hold, memory, and --set against the
+// technique's table when the technique is known without loading the scene);
+// throws on the first problem.
 void validateRequest(const RenderRequest& request);
 
 // Renders without writing anything (tests and chains use this directly);
@@ -49,11 +50,11 @@ int effectiveThreads(int requested);
 LoadedScene loadRequestScene(const RenderRequest& request);
 RenderOutcome renderLoadedScene(const RenderRequest& request, const LoadedScene& loaded);
 
-// The request as it renders on `scene` (effectiveRequest) and its parsed
+// The request as it renders on `scene` (effectiveRender) and its parsed
 // technique parameters, after every check a render makes before it starts
 // (parameters, content, motion blur, memory): throws the render's error.
 struct CheckedRender {
-    RenderRequest effective;
+    EffectiveRender effective;
     ParamSet params;
 };
 CheckedRender checkRender(const RenderRequest& request, const Scene& scene);

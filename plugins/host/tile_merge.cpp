@@ -40,8 +40,10 @@ Tile readTile(const std::string& path) {
         throw Error("merge: '" + path + "' is not a complete weft render (no weft:complete attribute)");
     const std::string spec = valueOf(t.metadata, "weft:tile");
     if (spec.empty()) throw Error("merge: '" + path + "' is not a tile (no weft:tile attribute; render it with --tile i/n)");
-    std::tie(t.index, t.count) = parseTileSpec(spec);
-    std::tie(t.fullWidth, t.fullHeight) = parseResolution(valueOf(t.metadata, "weft:tile:full_resolution"));
+    const TileSpec tile = parseTileSpec(spec);
+    t.index = tile.index, t.count = tile.count;
+    const Resolution full = parseResolution(valueOf(t.metadata, "weft:tile:full_resolution"));
+    t.fullWidth = full.width, t.fullHeight = full.height;
     return t;
 }
 

@@ -19,7 +19,7 @@ const std::string kCornell = std::string(WEFT_SOURCE_DIR) + "/scenes/cornell.jso
 RenderOutcome renderCornell(const std::string& res, int spp, std::vector<std::string> sets, std::uint64_t seed = 1,
                             int threads = 0, const std::string& technique = "lighting.adaptive_indirect") {
     RenderRequest r;
-    r.input = kCornell, r.resolution = res, r.technique = technique, r.sets = std::move(sets);
+    r.input = kCornell, r.resolution = parseResolution(res), r.technique = technique, r.sets = std::move(sets);
     r.spp = spp, r.seed = seed, r.threads = threads;
     return renderToImage(r);
 }

@@ -19,7 +19,7 @@ const std::string kCornell = std::string(WEFT_SOURCE_DIR) + "/scenes/cornell.jso
 
 RenderOutcome vpl(const std::string& res, std::vector<std::string> sets, std::uint64_t seed = 0, int threads = 0) {
     RenderRequest r;
-    r.input = kCornell, r.resolution = res, r.technique = "lighting.vpl_deferred", r.sets = std::move(sets);
+    r.input = kCornell, r.resolution = parseResolution(res), r.technique = "lighting.vpl_deferred", r.sets = std::move(sets);
     r.seed = seed, r.threads = threads;
     return renderToImage(r);
 }
@@ -66,7 +66,7 @@ TEST(VplDeferred, ConvergesToThePathTracersOneBounce) {
     // Two independent path-traced references: their difference measures the
     // references' own noise, the floor any converged estimate sits on.
     RenderRequest r;
-    r.input = kCornell, r.resolution = "24x24", r.technique = "mesh.pathtrace";
+    r.input = kCornell, r.resolution = Resolution{24, 24}, r.technique = "mesh.pathtrace";
     r.sets = {"max_depth=2", "jitter=false"}, r.spp = 2048, r.seed = 7;
     const Image reference = renderToImage(r).image;
     r.seed = 8;
@@ -98,7 +98,7 @@ TEST(VplDeferred, PointAndDirectionalLightsAgreeWithThePathTracer) {
                    {"type": "point", "position": [0, 2, 2], "intensity": 3}],
         "camera": {"eye": [0, 2.5, 3], "target": [0, 0, 0], "fov": 40}})");
     RenderRequest r;
-    r.input = (dir / "torus.json").string(), r.resolution = "24x24", r.technique = "mesh.pathtrace";
+    r.input = (dir / "torus.json").string(), r.resolution = Resolution{24, 24}, r.technique = "mesh.pathtrace";
     r.sets = {"max_depth=2", "jitter=false"}, r.spp = 512, r.seed = 3;
     const Image reference = renderToImage(r).image;
     r.technique = "lighting.vpl_deferred", r.sets = {"interleave=1x1", "vpls=2048"}, r.spp.reset();

@@ -31,7 +31,7 @@ TEST(PathTracePlane, VolumetricPathsThroughAPatternAreDeterministic) {
 
 TEST(PathTracePlane, AdaptiveStochasticAddsSamplesWhereTheyDiffer) {
     RenderRequest r;
-    r.input = kCornell, r.technique = kTech, r.resolution = "16x16", r.spp = 4, r.seed = 3;
+    r.input = kCornell, r.technique = kTech, r.resolution = Resolution{16, 16}, r.spp = 4, r.seed = 3;
     r.sets = {"adaptive=stochastic", "adaptive_spp=8"};
     const RenderOutcome out = renderToImage(r);
     const std::int64_t samples = out.counters.at("image.samples");

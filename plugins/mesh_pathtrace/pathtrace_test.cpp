@@ -79,7 +79,7 @@ TEST(PathTrace, BrdfSamplingMatchesItsDensity) {
 
 TEST(PathTrace, CornellErrorFallsAtTheMonteCarloRate) {
     RenderRequest r;
-    r.input = kCornell, r.resolution = "16x16", r.technique = "mesh.pathtrace", r.sets = {"max_depth=3", "jitter=false"};
+    r.input = kCornell, r.resolution = Resolution{16, 16}, r.technique = "mesh.pathtrace", r.sets = {"max_depth=3", "jitter=false"};
     r.spp = 2048, r.seed = 99;
     const Image reference = renderToImage(r).image;
     double err[2];

@@ -15,7 +15,7 @@ RenderOutcome renderSpp(const std::string& technique, const std::string& res, in
                         int threads = 0) {
     RenderRequest r;
     r.input = "builtin:sphere";
-    r.resolution = res;
+    r.resolution = parseResolution(res);
     r.spp = spp;
     r.threads = threads;
     r.technique = technique;

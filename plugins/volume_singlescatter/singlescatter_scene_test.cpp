@@ -104,7 +104,7 @@ TEST(SingleScatterScene, GroundShadowIsTheLitValueTimesTheChordTransmittance) {
     // ratio tracking of a constant medium scores 0 or 1: 4096 samples, std 0.0075 of T
     for (const Case& c : {Case{"cached", "1", 0.02}, Case{"raymarch", "1", 0.02}, Case{"ratio", "4096", 0.03}}) {
         RenderRequest r;
-        r.input = scene, r.resolution = "3x3", r.technique = kTech, r.spp = std::stoi(c.spp);
+        r.input = scene, r.resolution = Resolution{3, 3}, r.technique = kTech, r.spp = std::stoi(c.spp);
         r.sets = {std::string("estimator=") + c.estimator, "shadowstep=0.25", "gain=0"};
         const RenderOutcome out = renderToImage(r);
         EXPECT_NEAR(out.image.at(1, 1, 0) / lit, T, c.tolerance) << c.estimator;
@@ -209,7 +209,7 @@ struct TwoIntegrators {
 
 TwoIntegrators singleScatteringBothWays(const std::string& scene) {
     RenderRequest pt;
-    pt.input = scene, pt.resolution = "24x18", pt.spp = 512, pt.technique = "mesh.pathtrace", pt.sets = {"max_depth=1"};
+    pt.input = scene, pt.resolution = Resolution{24, 18}, pt.spp = 512, pt.technique = "mesh.pathtrace", pt.sets = {"max_depth=1"};
     const Image ref = renderToImage(pt).image;
     RenderRequest ss = pt;
     ss.technique = kTech, ss.spp = 32;

@@ -3,11 +3,13 @@
 // request, reject a bad value with the same text, and follow one precedence.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "core/base/error.hpp"
 #include "core/base/options/render_options.hpp"
 #include "core/image/io/image_io.hpp"
+#include "plugins/host/render_cli.hpp"
 #include "tests/support/test_support.hpp"
 
 using namespace weft::test;
@@ -111,17 +113,84 @@ TEST(RenderOptions, CommandLineWinsOverTheSceneBlockWhichWinsOverDefaults) {
     EXPECT_EQ(j["seed"], "0");
 }
 
-TEST(RenderOptions, EffectiveRequestMergesSetKeysCommandLineLast) {
-    weft::RenderRequest scene, given;
+TEST(RenderOptions, EffectiveRenderMergesSetKeysCommandLineLast) {
+    weft::SceneRender scene, given;
     scene.sets = {"step=0.5", "jitter=true"}, scene.spp = 4, scene.technique = "volume.preint";
     given.sets = {"step=0.25"}, given.seed = 9;
-    const weft::RenderRequest q = weft::effectiveRequest(given, scene);
+    const weft::EffectiveRender q = weft::effectiveRender(given, scene);
     EXPECT_EQ(q.sets, (std::vector<std::string>{"step=0.5", "jitter=true", "step=0.25"}));
-    EXPECT_EQ(*q.spp, 4);
-    EXPECT_EQ(*q.seed, 9u);
-    EXPECT_EQ(*q.technique, "volume.preint");
-    EXPECT_EQ(*q.resolution, "512x512");
-    EXPECT_EQ(*weft::effectiveRequest({}, {}).technique, "volume.raymarch");
+    EXPECT_EQ(q.spp, 4);
+    EXPECT_EQ(q.seed, 9u);
+    EXPECT_EQ(q.technique, "volume.preint");
+    EXPECT_EQ(q.resolution, (weft::Resolution{512, 512}));
+    EXPECT_EQ(weft::effectiveRender({}, {}).technique, "volume.raymarch");
+    EXPECT_EQ(weft::effectiveRender({}, {.sets = {"compat=vdb_render"}}).technique, "volume.singlescatter");
+}
+
+// Each field on its own: the command line's value, else the scene's, else the table's default.
+TEST(RenderOptions, EffectiveRenderTakesEachFieldFromTheFirstThatGivesIt) {
+    const weft::SceneRender none;
+    const weft::SceneRender scene{"volume.preint", {}, weft::Resolution{10, 6}, 3, 5};
+    const weft::SceneRender given{"volume.mip", {}, weft::Resolution{4, 4}, 2, 7};
+    const weft::EffectiveRender fromGiven = weft::effectiveRender(given, scene);
+    EXPECT_EQ(fromGiven.technique, "volume.mip");
+    EXPECT_EQ(fromGiven.resolution, (weft::Resolution{4, 4}));
+    EXPECT_EQ(fromGiven.spp, 2);
+    EXPECT_EQ(fromGiven.seed, 7u);
+    const weft::EffectiveRender fromScene = weft::effectiveRender(none, scene);
+    EXPECT_EQ(fromScene.technique, "volume.preint");
+    EXPECT_EQ(fromScene.resolution, (weft::Resolution{10, 6}));
+    EXPECT_EQ(fromScene.spp, 3);
+    EXPECT_EQ(fromScene.seed, 5u);
+    weft::SceneRender onlySpp;
+    onlySpp.spp = 8;  // one field given leaves the others to the scene
+    const weft::EffectiveRender mixed = weft::effectiveRender(onlySpp, scene);
+    EXPECT_EQ(mixed.spp, 8);
+    EXPECT_EQ(mixed.resolution, (weft::Resolution{10, 6}));
+    EXPECT_EQ(mixed.seed, 5u);
+    const weft::EffectiveRender defaults = weft::effectiveRender(none, none);
+    EXPECT_EQ(defaults.resolution, (weft::Resolution{512, 512}));
+    EXPECT_EQ(defaults.spp, 1);
+    EXPECT_EQ(defaults.seed, 0u);
+}
+
+// Values are typed once read: a resolution is two sides, a tile two numbers, frames a list.
+TEST(RenderOptions, ValuesAreTypedWhenRead) {
+    weft::RenderRequest r;
+    const auto give = [&](const char* name, const std::string& text) {
+        const weft::RenderOption* o = weft::findRenderOption(name, weft::kInBatchJob);
+        ASSERT_NE(o, nullptr) << name;
+        weft::applyRenderOption(r, *o, text, name);
+    };
+    give("resolution", "640X480");
+    ASSERT_TRUE(r.resolution);
+    EXPECT_EQ(*r.resolution, (weft::Resolution{640, 480}));
+    EXPECT_EQ(weft::parseResolution(r.resolution->text()), *r.resolution);  // round trip
+    EXPECT_EQ(r.resolution->text(), "640x480");
+    give("tile", "2/4");
+    EXPECT_EQ(r.tile, (weft::TileSpec{2, 4}));
+    give("frames", "3-1,7");
+    EXPECT_EQ(r.frames, (std::vector<int>{3, 2, 1, 7}));
+    EXPECT_THROW(give("tile", "5/4"), weft::Error);
+    EXPECT_THROW(weft::requireValid(weft::Resolution{0, 4}), weft::Error);
+    weft::SceneRender scene;
+    weft::readSceneRender(scene, json{{"res", {64, 32}}}, [](const std::string&, const std::string& m) { throw weft::Error(m); });
+    EXPECT_EQ(scene.resolution, (weft::Resolution{64, 32}));
+}
+
+// A scene says how it renders, never where the files go or on how many threads.
+TEST(RenderOptions, ASceneBlockRefusesRequestOnlyKeys) {
+    for (const char* key : {"output", "preview", "stats", "threads", "tile", "frames", "max-memory"}) {
+        weft::SceneRender scene;
+        std::string message;
+        try {
+            weft::readSceneRender(scene, json{{key, "x"}}, [](const std::string&, const std::string& m) { throw weft::Error(m); });
+        } catch (const weft::Error& e) {
+            message = e.what();
+        }
+        EXPECT_EQ(message.rfind(std::string("render.") + key + " belongs to the command line or a batch job, not to a scene", 0), 0u)
+            << key << ": " << message;
+    }
 }
 
 TEST(RenderOptions, MachineOptionsAreNotSceneSettings) {
@@ -129,6 +198,12 @@ TEST(RenderOptions, MachineOptionsAreNotSceneSettings) {
     const auto r = runWeft("render " + writeScene(dir, "s.json", R"({"threads": 2})") + " -o " + s(dir / "a.exr"));
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("render.threads belongs to the command line or a batch job"), std::string::npos) << r.output;
+    const auto output = runWeft("render " + writeScene(dir, "o.json", R"({"output": "elsewhere.exr"})") + " -o " + s(dir / "a.exr"));
+    EXPECT_NE(output.status, 0);
+    EXPECT_NE(output.output.find("render.output belongs to the command line or a batch job, not to a scene (scene keys: "
+                                 "technique, set, resolution, spp, seed)"), std::string::npos) << output.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.exr"));
+    EXPECT_FALSE(std::filesystem::exists("elsewhere.exr"));
     const auto unknown = runWeft("render " + writeScene(dir, "u.json", R"({"sp": 2})") + " -o " + s(dir / "a.exr"));
     EXPECT_NE(unknown.output.find("unknown key 'sp' in render; valid keys: technique, set, resolution, spp, seed"),
               std::string::npos) << unknown.output;
@@ -151,6 +226,26 @@ TEST(RenderOptions, AliasesAndTypesAreCheckedByTheTable) {
     weft::applyRenderOption(r, *spp, "7", "--spp");
     EXPECT_EQ(*r.spp, 7);
     EXPECT_EQ(weft::findRenderOption("threads", weft::kInScene), nullptr);
+}
+
+// The host spells every option as weft render has always taken it.
+TEST(RenderOptions, CommandLineNamesOfEveryOption) {
+    const std::map<std::string, std::string> names = {
+        {"input", "input"}, {"output", "-o,--output"}, {"preview", "--preview"}, {"stats", "--stats"}, {"frames", "--frames"},
+        {"tile", "--tile"}, {"grid", "--grid"}, {"technique", "--technique"}, {"set", "--set"},
+        {"resolution", "--res,--resolution"}, {"spp", "--spp"}, {"seed", "--seed"}, {"threads", "--threads"},
+        {"max-memory", "--max-memory"}, {"compression", "--compression"}, {"pixel_type", "-d,--pixel-type"},
+        {"verbose", "-v,--verbose"}};
+    for (const weft::RenderOption& o : weft::renderOptions()) {
+        ASSERT_TRUE(names.count(o.spec.name)) << "a new option: add its spelling here: " << o.spec.name;
+        EXPECT_EQ(weft::commandLineNames(o), names.at(o.spec.name));
+    }
+    EXPECT_EQ(names.size(), weft::renderOptions().size());
+    EXPECT_EQ(weft::commandLineLabel(*weft::findRenderOption("resolution", weft::kOnCommandLine)), "--res");
+    EXPECT_EQ(weft::commandLineLabel(*weft::findRenderOption("pixel_type", weft::kOnCommandLine)), "--pixel-type");
+    EXPECT_EQ(weft::commandLineLabel(*weft::findRenderOption("input", weft::kOnCommandLine)), "input");
+    EXPECT_EQ(weft::findRenderOption("spp", weft::kInScene)->label(weft::kInScene), "render.spp");
+    EXPECT_EQ(weft::findRenderOption("spp", weft::kInBatchJob)->label(weft::kInBatchJob), "spp");
 }
 
 TEST(RenderOptions, HelpRenderListsEveryOption) {

@@ -137,7 +137,7 @@ std::string renderOne(const TechniqueInfo& info, const CaseSetup& s, const std::
     const Applied a = applicableParameters(info, s);
     if (s.parametersOnly && a.sets.empty()) return "n/a";
     RenderRequest r;
-    r.input = input, r.resolution = s.resolution, r.spp = s.spp, r.technique = info.name, r.threads = 1, r.sets = a.sets;
+    r.input = input, r.resolution = parseResolution(s.resolution), r.spp = s.spp, r.technique = info.name, r.threads = 1, r.sets = a.sets;
     const auto t0 = std::chrono::steady_clock::now();
     RenderOutcome out;
     try {

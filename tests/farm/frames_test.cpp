@@ -91,8 +91,8 @@ TEST(TileRows, BandsCoverTheImageOnceForCountsThatDoNotDivideIt) {
 }
 
 TEST(TileSpec, ParsesIOfNAndRejectsTheRest) {
-    EXPECT_EQ(weft::parseTileSpec("2/4"), std::make_pair(2, 4));
-    EXPECT_EQ(weft::parseTileSpec("1/1"), std::make_pair(1, 1));
+    EXPECT_EQ(weft::parseTileSpec("2/4"), (weft::TileSpec{2, 4}));
+    EXPECT_EQ(weft::parseTileSpec("1/1"), (weft::TileSpec{1, 1}));
     for (const char* bad : {"0/4", "5/4", "2", "2/", "/4", "2/4x", "-1/4", "a/b", "2-4"})
         EXPECT_THROW(weft::parseTileSpec(bad), weft::Error) << bad;
 }

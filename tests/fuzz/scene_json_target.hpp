@@ -57,9 +57,9 @@ inline Outcome sceneJson(const std::uint8_t* data, std::size_t size) {
     const std::string path = writeScratch("scene.json", text);
     return guarded([&] {
         const Scene scene = loadScene(path);
-        const RenderRequest q = effectiveRequest(RenderRequest{}, scene.render);
-        parseResolution(*q.resolution);
-        const TechniqueInfo& info = techniques().get(*q.technique);
+        const EffectiveRender q = effectiveRender(SceneRender{}, scene.render);
+        requireValid(q.resolution);
+        const TechniqueInfo& info = techniques().get(q.technique);
         std::map<std::string, std::string> given;
         for (const std::string& kv : q.sets) {
             auto [k, v] = splitKeyValue(kv, "set");

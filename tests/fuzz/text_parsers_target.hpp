@@ -16,6 +16,7 @@
 #include "core/base/options/render_options.hpp"
 #include "core/volume/io/raw_volume.hpp"
 #include "plugins/host/command.hpp"
+#include "plugins/host/render_cli.hpp"
 #include "plugins/host/render_job.hpp"
 #include "plugins/technique.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
@@ -83,7 +84,7 @@ inline void tiles(const std::string& text) {
 inline void resolution(const std::string& text) {
     const auto [w, h] = parseResolution(text);
     require(1 <= w && w <= 65536 && 1 <= h && h <= 65536, "sizes in [1, 65536]", text);
-    require(parseResolution(std::to_string(w) + "x" + std::to_string(h)) == std::pair(w, h), "round trip", text);
+    require(parseResolution(std::to_string(w) + "x" + std::to_string(h)) == Resolution{w, h}, "round trip", text);
 }
 
 // Lines "name value" as `weft render --name value` would give them.
@@ -94,11 +95,11 @@ inline void renderRequest(const std::string& text) {
         const std::string name = line.substr(0, space), value = space == std::string::npos ? "" : line.substr(space + 1);
         const RenderOption* option = findRenderOption(name, kOnCommandLine);
         if (!option) continue;
-        applyRenderOption(r, *option, value, option->label(kOnCommandLine));
+        applyRenderOption(r, *option, value, commandLineLabel(*option));
     }
     validateRequest(r);
     if (r.frames) {
-        const std::vector<int> frames = parseFrameRange(*r.frames);
+        const std::vector<int>& frames = *r.frames;
         if (frames.size() <= 1000) requestsForFrames(r, frames);  // each frame copies the request
     }
 }

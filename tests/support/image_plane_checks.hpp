@@ -19,7 +19,7 @@ namespace weft::test {
 inline Image renderPlane(const std::string& input, const std::string& technique, const std::string& res, int spp,
                          std::uint64_t seed, std::vector<std::string> sets, int threads = 0) {
     RenderRequest r;
-    r.input = input, r.technique = technique, r.resolution = res, r.spp = spp, r.seed = seed;
+    r.input = input, r.technique = technique, r.resolution = parseResolution(res), r.spp = spp, r.seed = seed;
     r.sets = std::move(sets), r.threads = threads;
     return renderToImage(r).image;
 }

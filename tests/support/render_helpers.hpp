@@ -14,7 +14,7 @@ inline RenderOutcome render(const std::string& input, const std::string& res, st
                             std::string technique = "volume.raymarch", int threads = 0, std::optional<int> spp = {}) {
     RenderRequest r;
     r.input = input;
-    r.resolution = res;
+    r.resolution = parseResolution(res);
     r.sets = std::move(sets);
     r.technique = std::move(technique);
     r.threads = threads;

@@ -51,7 +51,7 @@ std::string wallScene(const test::TempDir& dir, const std::string& name, bool sl
 RenderOutcome renderWith(const std::string& scene, const std::string& technique, int threads, std::vector<std::string> sets = {},
                          const std::string& res = "5x5") {
     RenderRequest r;
-    r.input = scene, r.resolution = res, r.technique = technique, r.threads = threads, r.sets = std::move(sets);
+    r.input = scene, r.resolution = parseResolution(res), r.technique = technique, r.threads = threads, r.sets = std::move(sets);
     return renderToImage(r);
 }
 

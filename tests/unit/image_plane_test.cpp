@@ -17,7 +17,7 @@ namespace {
 RenderOutcome analytic(const std::string& scene, int size, int spp, std::vector<std::string> sets, int threads = 0) {
     RenderRequest r;
     r.input = "builtin:" + scene;
-    r.resolution = std::to_string(size) + "x" + std::to_string(size);
+    r.resolution = Resolution{size, size};
     r.spp = spp;
     r.threads = threads;
     r.sets = std::move(sets);
@@ -242,7 +242,7 @@ TEST(ImagePlane, TinyImagesAndExtremeSettingsStayFinite) {
                                                        {"adaptive=stochastic", "adaptive_threshold=0"}}) {
                 RenderRequest r;
                 r.input = std::string("builtin:") + scene;
-                r.resolution = size;
+                r.resolution = parseResolution(size);
                 r.spp = 3;
                 r.sets = sets;
                 const RenderOutcome out = renderToImage(r);

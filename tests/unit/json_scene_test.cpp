@@ -82,7 +82,7 @@ TEST(SceneLoader, ReadsCameraVolumesLightsAndRenderSettings) {
     ASSERT_EQ(s.lights.size(), 1u);
     EXPECT_NEAR(s.lights[0].direction.y(), -1.0, 1e-12);  // normalised
     EXPECT_EQ(*s.render.technique, "volume.raymarch");
-    EXPECT_EQ(*s.render.resolution, "64x32");
+    EXPECT_EQ(*s.render.resolution, (Resolution{64, 32}));
     EXPECT_EQ(*s.render.spp, 4);
     EXPECT_EQ(*s.render.seed, 9u);
     EXPECT_EQ(s.render.sets, (std::vector<std::string>{"jitter=true", "step=0.25"}));  // JSON objects read in key order

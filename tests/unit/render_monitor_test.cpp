@@ -68,7 +68,7 @@ RenderRequest requestFor(const TechniqueInfo& t, RenderMonitor& monitor) {
     RenderRequest r;
     r.input = inputFor(t);
     r.technique = t.name;
-    r.resolution = "40x32";
+    r.resolution = Resolution{40, 32};
     r.spp = 1;
     r.threads = 2;
     r.monitor = &monitor;

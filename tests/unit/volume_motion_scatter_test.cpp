@@ -26,7 +26,7 @@ constexpr double kVelocity = 18;  // world units per second: the blob sweeps 0.7
 Image renderWith(const std::string& scene, const std::string& technique, const std::vector<std::string>& sets, int spp,
                  std::uint64_t seed = 1, int threads = 0) {
     RenderRequest r;  // at frame 0: between the moving camera's keys
-    r.input = scene, r.resolution = "40x24", r.sets = sets, r.technique = technique, r.spp = spp, r.seed = seed, r.threads = threads;
+    r.input = scene, r.resolution = Resolution{40, 24}, r.sets = sets, r.technique = technique, r.spp = spp, r.seed = seed, r.threads = threads;
     r.frame = 0;
     return renderToImage(r).image;
 }

@@ -59,7 +59,7 @@ TEST(VolumeMotion, VelocityBlurEqualsCameraBlurTheOtherWay) {
     const std::vector<std::string> sets{"step=0.25"};
     const Image moving = test::render(movingScene(dir), "48x32", sets, "volume.raymarch", 0, 64).image;
     RenderRequest r;  // at frame 0, between the camera's keys
-    r.input = movingCameraScene(dir, 18), r.resolution = "48x32", r.sets = sets, r.technique = "volume.raymarch", r.spp = 64, r.frame = 0;
+    r.input = movingCameraScene(dir, 18), r.resolution = Resolution{48, 32}, r.sets = sets, r.technique = "volume.raymarch", r.spp = 64, r.frame = 0;
     const Image camera = renderToImage(r).image;
     const Image still = test::render(movingScene(dir, "[0, 0]"), "48x32", sets, "volume.raymarch", 0, 64).image;
     const double peak = peakOf(camera, 3);

@@ -144,13 +144,28 @@ RowBand tileRows(int height, int index, int count) {
     return {edge(index - 1), edge(index)};
 }
 
-std::pair<int, int> parseTileSpec(const std::string& text) {
-    int i = 0, n = 0;
+bool TileSpec::valid() const { return count >= 1 && count <= 65536 && index >= 1 && index <= count; }
+
+std::string TileSpec::text() const { return std::to_string(index) + "/" + std::to_string(count); }
+
+namespace {
+
+Error badTile(const std::string& text) {
+    return Error("bad tile '" + text + "': expected i/n with 1 <= i <= n <= 65536, e.g. 2/4");
+}
+
+}  // namespace
+
+TileSpec parseTileSpec(const std::string& text) {
+    TileSpec t;
     char slash = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' || n < 1 || n > 65536 ||
-        i < 1 || i > n)
-        throw Error("bad tile '" + text + "': expected i/n with 1 <= i <= n <= 65536, e.g. 2/4");
-    return {i, n};
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &t.index, &slash, &t.count, &extra) != 3 || slash != '/' || !t.valid())
+        throw badTile(text);
+    return t;
+}
+
+void requireValid(const TileSpec& tile) {
+    if (!tile.valid()) throw badTile(tile.text());
 }
 
 }  // namespace weft

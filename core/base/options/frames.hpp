@@ -37,7 +37,18 @@ struct RowBand {
 };
 RowBand tileRows(int height, int index, int count);
 
-// "i/n" -> (i, n) with 1 <= i <= n <= 65536; anything else is an Error.
-std::pair<int, int> parseTileSpec(const std::string& text);
+// Tile `index` (1-based) of `count` row bands, valid when 1 <= index <= count <= 65536.
+struct TileSpec {
+    int index = 1;
+    int count = 1;
+
+    bool valid() const;
+    std::string text() const;  // "i/n"
+    bool operator==(const TileSpec&) const = default;
+};
+// "i/n" -> {i, n}, valid; anything else is an Error naming the text.
+TileSpec parseTileSpec(const std::string& text);
+// A tile built in code, held to the same limits and error as parseTileSpec.
+void requireValid(const TileSpec& tile);
 
 }  // namespace weft

@@ -1,6 +1,6 @@
 #include "core/base/options/render_options.hpp"
 
-#include <cstdio>
+#include <cctype>
 #include <nlohmann/json.hpp>
 
 #include "core/base/error.hpp"
@@ -16,16 +16,9 @@ using nlohmann::json;
 
 constexpr unsigned kEverywhere = kOnCommandLine | kInBatchJob | kInScene;
 
-bool resolutionOf(const std::string& text, int& w, int& h) {
-    char x = 0, extra = 0;
-    return std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) == 3 && (x == 'x' || x == 'X') && w >= 1 &&
-           h >= 1 && w <= 65536 && h <= 65536;
-}
-
 // Checks for string options: each throws a message that starts with the value.
 void checkResolution(const std::string& t) {
-    int w = 0, h = 0;
-    if (!resolutionOf(t, w, h)) throw Error("'" + t + "': expected WxH with W and H in [1, 65536], e.g. 512x512");
+    if (!readResolution(t)) throw Error("'" + t + "': expected WxH with W and H in [1, 65536], e.g. 512x512");
 }
 void checkKeyValue(const std::string& t) {
     const auto eq = t.find('=');
@@ -40,60 +33,64 @@ void checkTile(const std::string& t) {
     if (!t.empty()) parseTileSpec(t);
 }
 
-RenderOption option(ParamSpec spec, std::string cli, unsigned places, void (*store)(RenderRequest&, const std::string&),
-                    std::vector<std::string> aliases = {}) {
+RenderOption option(ParamSpec spec, unsigned places, void (*store)(RenderRequest&, const std::string&)) {
     RenderOption o;
-    o.spec = std::move(spec), o.cli = std::move(cli), o.places = places, o.store = store, o.aliases = std::move(aliases);
+    o.spec = std::move(spec), o.places = places, o.store = store;
+    return o;
+}
+
+// An option a scene's render block may give too.
+RenderOption sceneOption(ParamSpec spec, void (*store)(SceneRender&, const std::string&), std::vector<std::string> aliases = {}) {
+    RenderOption o;
+    o.spec = std::move(spec), o.places = kEverywhere, o.storeInScene = store, o.aliases = std::move(aliases);
     return o;
 }
 
 std::vector<RenderOption> makeTable() {
+    constexpr unsigned kRequestOnly = kOnCommandLine | kInBatchJob;
     std::vector<RenderOption> t;
     t.push_back(option(stringParam("input", "", "scene .json, .vdb, .obj/.ply file, or builtin:NAME; # or @ = frame number"),
-                       "input", kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.input = v; }));
-    t.push_back(option(stringParam("output", "", "output EXR (RGBA + AOVs + metadata); # or @ = frame number"), "-o,--output",
-                       kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.output = v; }));
-    t.push_back(option(stringParam("preview", "", "also write a display-referred PNG/JPEG through OpenColorIO"), "--preview",
-                       kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.preview = v; }));
-    t.push_back(option(stringParam("stats", "", "write counters, timings and parameters as JSON"), "--stats",
-                       kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.stats = v; }));
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.input = v; }));
+    t.push_back(option(stringParam("output", "", "output EXR (RGBA + AOVs + metadata); # or @ = frame number"),
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.output = v; }));
+    t.push_back(option(stringParam("preview", "", "also write a display-referred PNG/JPEG through OpenColorIO"),
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.preview = v; }));
+    t.push_back(option(stringParam("stats", "", "write counters, timings and parameters as JSON"),
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.stats = v; }));
     t.push_back(option(stringParam("frames", "", "frames to render, e.g. 1001-1100x2, 1,3,5-9, -5--1 (names need # or @)", checkFrames),
-                       "--frames", kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.frames = v; }));
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.frames = parseFrameRange(v); }));
     t.push_back(option(stringParam("tile", "", "render only tile i of n (1-based row bands), e.g. 2/4; merge with `weft merge`", checkTile),
-                       "--tile", kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.tile = v; }));
-    t.push_back(option(stringParam("grid", "", "grid of a bare .vdb (default: density, else the first float grid)"), "--grid",
-                       kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.grid = v; }));
-    t.push_back(option(stringParam("technique", "volume.raymarch",
-                                   "technique (weft help lists them); volume.singlescatter with set compat=vdb_render"),
-                       "--technique", kEverywhere, [](RenderRequest& r, const std::string& v) { r.technique = v; }));
-    t.push_back(option(stringParam("set", "", "technique parameter key=value, repeatable (weft help TECHNIQUE)", checkKeyValue),
-                       "--set", kEverywhere, [](RenderRequest& r, const std::string& v) { r.sets.push_back(v); }, {"params"}));
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.tile = parseTileSpec(v); }));
+    t.push_back(option(stringParam("grid", "", "grid of a bare .vdb (default: density, else the first float grid)"),
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.grid = v; }));
+    t.push_back(sceneOption(stringParam("technique", "volume.raymarch",
+                                        "technique (weft help lists them); volume.singlescatter with set compat=vdb_render"),
+                            [](SceneRender& r, const std::string& v) { r.technique = v; }));
+    t.push_back(sceneOption(stringParam("set", "", "technique parameter key=value, repeatable (weft help TECHNIQUE)", checkKeyValue),
+                            [](SceneRender& r, const std::string& v) { r.sets.push_back(v); }, {"params"}));
     t.back().repeated = true;
-    t.push_back(option(stringParam("resolution", "512x512", "image size WxH ([W, H] in JSON)", checkResolution), "--res,--resolution",
-                       kEverywhere, [](RenderRequest& r, const std::string& v) { r.resolution = v; }, {"res"}));
-    t.push_back(option(intParam("spp", 1, 1, 1 << 20, "camera samples per pixel"), "--spp", kEverywhere,
-                       [](RenderRequest& r, const std::string& v) { r.spp = int(std::stoll(v)); }));
-    t.push_back(option(intParam("seed", 0, 0, std::int64_t(1) << 53, "random seed (same seed, same image)"), "--seed", kEverywhere,
-                       [](RenderRequest& r, const std::string& v) { r.seed = std::uint64_t(std::stoull(v)); }));
-    t.push_back(option(intParam("threads", 0, 0, 4096, "worker threads, 0 = all cores (the image does not depend on it)"), "--threads",
-                       kOnCommandLine | kInBatchJob, [](RenderRequest& r, const std::string& v) { r.threads = int(std::stoll(v)); }));
+    t.push_back(sceneOption(stringParam("resolution", "512x512", "image size WxH ([W, H] in JSON)", checkResolution),
+                            [](SceneRender& r, const std::string& v) { r.resolution = parseResolution(v); }, {"res"}));
+    t.push_back(sceneOption(intParam("spp", 1, 1, 1 << 20, "camera samples per pixel"),
+                            [](SceneRender& r, const std::string& v) { r.spp = int(std::stoll(v)); }));
+    t.push_back(sceneOption(intParam("seed", 0, 0, std::int64_t(1) << 53, "random seed (same seed, same image)"),
+                            [](SceneRender& r, const std::string& v) { r.seed = std::uint64_t(std::stoull(v)); }));
+    t.push_back(option(intParam("threads", 0, 0, 4096, "worker threads, 0 = all cores (the image does not depend on it)"),
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.threads = int(std::stoll(v)); }));
     t.push_back(option(floatParam("max-memory", 0, 0, 1e6, "refuse renders estimated to need more GiB than this: the technique's buffers per pixel and the scene (0 = 3/4 of physical memory)"),
-                       "--max-memory", kOnCommandLine | kInBatchJob,
-                       [](RenderRequest& r, const std::string& v) { r.maxMemoryGiB = std::stod(v); }));
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.maxMemoryGiB = std::stod(v); }));
     t.push_back(option(enumParam("compression", kDefaultExrCompression, exrCompressionNames(),
                                  "EXR compression; lossless: none, rle, zips, zip, piz; lossy: pxr24 (floats rounded to 24 bits), "
                                  "b44, b44a (lossy on half channels), dwaa, dwab (lossy on R, G, B, Y, and on a layer's .R/.G/.B/.Y such as N.Y)"),
-                       "--compression", kOnCommandLine | kInBatchJob,
-                       [](RenderRequest& r, const std::string& v) { r.compression = v; }));
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.compression = v; }));
     t.push_back(option(stringParam("pixel_type", "float",
                                    "EXR pixel type, repeatable, later ones win: half or float for every channel, or CHANNEL=TYPE "
                                    "for a channel, a layer (N: N.X, N.Y, N.Z) or aovs (all but R, G, B, A); half saturates at 65504",
                                    checkPixelTypeSpec),
-                       "-d,--pixel-type", kOnCommandLine | kInBatchJob,
-                       [](RenderRequest& r, const std::string& v) { r.pixelTypes.push_back(v); }));
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.pixelTypes.push_back(v); }));
     t.back().repeated = true;
-    t.push_back(option(boolParam("verbose", false, "print the counter table and timings"), "-v,--verbose", kOnCommandLine | kInBatchJob,
-                       [](RenderRequest& r, const std::string& v) { r.verbose = v == "true"; }));
+    t.push_back(option(boolParam("verbose", false, "print the counter table and timings"),
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.verbose = v == "true"; }));
     return t;
 }
 
@@ -132,13 +129,7 @@ const std::vector<RenderOption>& renderOptions() {
     return table;
 }
 
-std::string RenderOption::label(RenderOptionPlace place) const {
-    if (place == kInScene) return "render." + spec.name;
-    if (place == kInBatchJob) return spec.name;
-    const auto dashes = cli.find("--");
-    if (dashes == std::string::npos) return cli;  // positional
-    return cli.substr(dashes, cli.find(',', dashes) - dashes);
-}
+std::string RenderOption::label(RenderOptionPlace place) const { return place == kInScene ? "render." + spec.name : spec.name; }
 
 const RenderOption* findRenderOption(std::string_view key, RenderOptionPlace place) {
     for (const RenderOption& o : renderOptions()) {
@@ -157,14 +148,27 @@ std::string renderOptionNames(RenderOptionPlace place) {
     return names;
 }
 
-void applyRenderOption(RenderRequest& r, const RenderOption& option, const std::string& text, const std::string& label) {
-    std::string canonical;
+namespace {
+
+std::string checkedText(const RenderOption& option, const std::string& text, const std::string& label) {
     try {
-        canonical = checked(option.spec, text);
+        return checked(option.spec, text);
     } catch (const Error& e) {
         throw Error(labelled(label, e.what()));
     }
-    option.store(r, canonical);
+}
+
+}  // namespace
+
+void applyRenderOption(RenderRequest& r, const RenderOption& option, const std::string& text, const std::string& label) {
+    const std::string canonical = checkedText(option, text, label);
+    if (option.storeInScene) option.storeInScene(r, canonical);
+    else option.store(r, canonical);
+}
+
+void applyRenderOption(SceneRender& r, const RenderOption& option, const std::string& text, const std::string& label) {
+    if (!option.storeInScene) throw Error(label + " is not a scene setting");  // the table's places say where it may go
+    option.storeInScene(r, checkedText(option, text, label));
 }
 
 std::vector<std::string> renderOptionTexts(const RenderOption& option, const json& value) {
@@ -197,8 +201,11 @@ std::vector<std::string> renderOptionTexts(const RenderOption& option, const jso
     return {scalarText(value)};
 }
 
-void readRenderOptions(RenderRequest& r, const json& object, RenderOptionPlace place,
-                       const std::function<void(const std::string&, const std::string&)>& fail) {
+namespace {
+
+// Each key of `object` through the table: its texts checked and handed to `apply`.
+void readOptions(const json& object, RenderOptionPlace place, const RenderOptionFailure& fail,
+                 const std::function<void(const RenderOption&, const std::string&, const std::string&)>& apply) {
     for (const auto& item : object.items()) {
         const std::string& key = item.key();
         const RenderOption* o = findRenderOption(key, place);
@@ -215,12 +222,26 @@ void readRenderOptions(RenderRequest& r, const json& object, RenderOptionPlace p
         }
         for (const std::string& t : texts) {
             try {
-                applyRenderOption(r, *o, t, o->label(place));
+                apply(*o, t, o->label(place));
             } catch (const Error& e) {
                 fail(key, e.what());
             }
         }
     }
+}
+
+}  // namespace
+
+void readRenderOptions(RenderRequest& r, const json& job, const RenderOptionFailure& fail) {
+    readOptions(job, kInBatchJob, fail, [&](const RenderOption& o, const std::string& text, const std::string& label) {
+        applyRenderOption(r, o, text, label);
+    });
+}
+
+void readSceneRender(SceneRender& r, const json& block, const RenderOptionFailure& fail) {
+    readOptions(block, kInScene, fail, [&](const RenderOption& o, const std::string& text, const std::string& label) {
+        applyRenderOption(r, o, text, label);
+    });
 }
 
 std::string defaultTechnique(const std::vector<std::string>& sets) {
@@ -229,79 +250,36 @@ std::string defaultTechnique(const std::vector<std::string>& sets) {
     return "volume.raymarch";
 }
 
-RenderRequest effectiveRequest(const RenderRequest& given, const RenderRequest& scene) {
-    RenderRequest q = given;
-    q.sets = scene.sets;
-    q.sets.insert(q.sets.end(), given.sets.begin(), given.sets.end());
-    if (!q.technique) q.technique = scene.technique;
-    if (!q.technique) q.technique = defaultTechnique(q.sets);
-    const auto fallback = [&](auto& field, const auto& sceneValue, const char* name) {
-        if (!field) field = sceneValue;
-        if (!field) findRenderOption(name, kInScene)->store(q, findRenderOption(name, kInScene)->spec.defaultValue);
-    };
-    fallback(q.resolution, scene.resolution, "resolution");
-    fallback(q.spp, scene.spp, "spp");
-    fallback(q.seed, scene.seed, "seed");
-    return q;
-}
-
-void checkRenderNumber(std::string_view name, double value, RenderOptionPlace place) {
-    const RenderOption* o = findRenderOption(name, place);
-    if (o && !(value >= o->spec.min && value <= o->spec.max))
-        throw Error(o->label(place) + " " + formatNumber(value) + " is outside " + o->spec.allowedText());
-}
-
-std::pair<int, int> parseResolution(const std::string& text) {
-    int w = 0, h = 0;
-    if (!resolutionOf(text, w, h))
-        throw Error("bad resolution '" + text + "': expected WxH with W and H in [1, 65536], e.g. 512x512");
-    return {w, h};
-}
-
 namespace {
 
-std::string places(const RenderOption& o) {
-    std::string s;
-    if (o.places & kOnCommandLine) s += o.label(kOnCommandLine);
-    if (o.places & kInBatchJob) s += std::string(s.empty() ? "" : ", ") + "batch";
-    if (o.places & kInScene) s += std::string(s.empty() ? "" : ", ") + "scene";
-    return s;
+// The table's defaults of the scene options that have one.
+const SceneRender& tableDefaults() {
+    static const SceneRender defaults = [] {
+        SceneRender d;
+        for (const RenderOption& o : renderOptions())
+            if (o.storeInScene && !o.repeated && !o.spec.defaultValue.empty()) o.storeInScene(d, o.spec.defaultValue);
+        return d;
+    }();
+    return defaults;
 }
 
-std::string jsonNames(const RenderOption& o) {
-    std::string s = o.spec.name;
-    for (const std::string& a : o.aliases) s += " (or " + a + ")";
-    return s;
+template <typename T>
+T firstGiven(const std::optional<T>& given, const std::optional<T>& scene, const std::optional<T>& fallback) {
+    return given ? *given : scene ? *scene : *fallback;
 }
 
 }  // namespace
 
-std::string renderOptionsHelp() {
-    std::string out;
-    char line[512];
-    for (const RenderOption& o : renderOptions()) {
-        std::snprintf(line, sizeof line, "  %-26s %-6s %-9s %-20s %s\n    given as: %s\n", jsonNames(o).c_str(),
-                      paramTypeName(o.spec.type), o.spec.defaultValue.empty() ? "-" : o.spec.defaultValue.c_str(),
-                      o.spec.type == ParamType::String ? "" : o.spec.allowedText().c_str(), o.spec.doc.c_str(), places(o).c_str());
-        out += line;
-    }
-    return out;
-}
-
-std::string renderOptionsMarkdown() {
-    std::string out =
-        "| key (batch, scene) | command line | batch | scene | type | default | allowed | meaning |\n"
-        "|---|---|---|---|---|---|---|---|\n";
-    for (const RenderOption& o : renderOptions()) {
-        std::string doc = o.spec.doc;
-        for (std::size_t p = doc.find('|'); p != std::string::npos; p = doc.find('|', p + 2)) doc.replace(p, 1, "\\|");
-        out += "| `" + o.spec.name + "`";
-        for (const std::string& a : o.aliases) out += " or `" + a + "`";
-        out += " | `" + o.cli + "` | " + ((o.places & kInBatchJob) ? "yes" : "no") + " | " + ((o.places & kInScene) ? "yes" : "no") +
-               " | " + paramTypeName(o.spec.type) + " | " + (o.spec.defaultValue.empty() ? "" : "`" + o.spec.defaultValue + "`") +
-               " | " + (o.spec.type == ParamType::String ? "" : o.spec.allowedMarkdown()) + " | " + doc + " |\n";
-    }
-    return out;
+EffectiveRender effectiveRender(const SceneRender& given, const SceneRender& scene) {
+    EffectiveRender e;
+    e.sets = scene.sets;
+    e.sets.insert(e.sets.end(), given.sets.begin(), given.sets.end());
+    const SceneRender& defaults = tableDefaults();
+    e.technique = firstGiven(given.technique, scene.technique, std::optional(defaultTechnique(e.sets)));
+    e.resolution = firstGiven(given.resolution, scene.resolution, defaults.resolution);
+    e.spp = firstGiven(given.spp, scene.spp, defaults.spp);
+    e.seed = firstGiven(given.seed, scene.seed, defaults.seed);
+    return e;
 }
 
 }  // namespace weft

@@ -57,7 +57,7 @@ std::string cacheDirOf(const TuneCommand& c) {
 // same converged reference (its family), so their errors compare.
 std::vector<std::string> techniquesOf(const TuneCommand& c, const RenderRequest& base, const Scene& scene) {
     if (!c.techniques.empty()) return c.techniques;
-    const std::string own = *effectiveRequest(base, scene.render).technique;
+    const std::string own = effectiveRender(base, scene.render).technique;
     const std::string family = techniques().get(own).reference.technique;
     std::vector<std::string> names{own};
     for (const TechniqueInfo* t : techniques().all())

@@ -56,8 +56,8 @@ void checkRun(SweepRun& run, const Scene& scene) {
     try {
         validateRequest(run.request);
         const CheckedRender checked = checkRender(run.request, scene);
-        run.technique = *checked.effective.technique;
-        std::tie(run.width, run.height) = parseResolution(*checked.effective.resolution);
+        run.technique = checked.effective.technique;
+        run.width = checked.effective.resolution.width, run.height = checked.effective.resolution.height;
     } catch (const Error& e) {
         throw Error("--vary " + runLabel(run) + ": " + e.what());
     }

@@ -89,12 +89,13 @@ RenderRequest SweepReferences::referenceRequest(const SweepRun& run, const Scene
 }
 
 std::string SweepReferences::cachePath(const SweepRun& run, const Scene& scene) const {
-    const RenderRequest q = effectiveRequest(referenceRequest(run, scene), scene.render);
+    const RenderRequest r = referenceRequest(run, scene);
+    const EffectiveRender q = effectiveRender(r, scene.render);
     Fnv f;
-    f.add(WEFT_VERSION).add(*q.technique).add(*q.resolution).add(std::to_string(*q.spp)).add(std::to_string(*q.seed));
+    f.add(WEFT_VERSION).add(q.technique).add(q.resolution.text()).add(std::to_string(q.spp)).add(std::to_string(q.seed));
     for (const std::string& s : q.sets) f.add(s);
-    f.add(q.grid).add(q.frame ? std::to_string(*q.frame) : "-");
-    addFile(f, q.input);
+    f.add(r.grid).add(r.frame ? std::to_string(*r.frame) : "-");
+    addFile(f, r.input);
     for (const Volume& v : scene.volumes) addFile(f, v.source);
     for (const TriangleMesh& m : scene.meshes) addFile(f, m.source);
     return (fs::path(cacheDir_) / ("reference-" + hex(f.h) + ".exr")).string();

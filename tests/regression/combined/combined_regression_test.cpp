@@ -31,7 +31,7 @@ RenderRequest requestOf(const RegressionCase& c, int threads) {
     RenderRequest r;
     r.input = (kRoot / c.input).string();
     r.technique = c.technique;
-    r.resolution = c.resolution;
+    r.resolution = parseResolution(c.resolution);
     r.spp = c.spp;
     r.sets = c.sets;
     r.threads = threads;
