@@ -11,7 +11,8 @@
 # until the next configure; that costs time, never correctness.
 #
 # The header is compiled once for weft_core and reused by the libraries
-# built with the same flags; each test executable compiles its own. ccache caches sources compiled with it given
+# built with the same flags; a test executable with enough such sources
+# compiles its own. ccache caches sources compiled with it given
 # CCACHE_SLOPPINESS=pch_defines,time_macros (CMakeLists.txt sets that).
 option(WEFT_PCH "Precompile <openvdb/openvdb.h> for the sources that include OpenVDB's grids" ON)
 
@@ -48,8 +49,8 @@ function(_weft_reaches_openvdb file result)
   set(${result} ${answer} PARENT_SCOPE)
 endfunction()
 
-# Gives `target`'s sources that reach OpenVDB the precompiled header: its
-# own (the first target asked) or weft_core's.
+# Gives `target`'s sources that reach OpenVDB the precompiled header:
+# weft_core's own, reused by the other libraries; an executable's own.
 function(weft_precompile_openvdb target)
   if(NOT WEFT_PCH)
     return()

@@ -172,6 +172,8 @@ TEST(RenderOptions, ValuesAreTypedWhenRead) {
     give("frames", "3-1,7");
     EXPECT_EQ(r.frames, (std::vector<int>{3, 2, 1, 7}));
     EXPECT_THROW(give("tile", "5/4"), weft::Error);
+    give("tile", "");  // the whole image, as an empty --tile always meant
+    EXPECT_FALSE(r.tile);
     EXPECT_THROW(weft::requireValid(weft::Resolution{0, 4}), weft::Error);
     weft::SceneRender scene;
     weft::readSceneRender(scene, json{{"res", {64, 32}}}, [](const std::string&, const std::string& m) { throw weft::Error(m); });

@@ -60,7 +60,10 @@ std::vector<RenderOption> makeTable() {
     t.push_back(option(stringParam("frames", "", "frames to render, e.g. 1001-1100x2, 1,3,5-9, -5--1 (names need # or @)", checkFrames),
                        kRequestOnly, [](RenderRequest& r, const std::string& v) { r.frames = parseFrameRange(v); }));
     t.push_back(option(stringParam("tile", "", "render only tile i of n (1-based row bands), e.g. 2/4; merge with `weft merge`", checkTile),
-                       kRequestOnly, [](RenderRequest& r, const std::string& v) { r.tile = parseTileSpec(v); }));
+                       kRequestOnly, [](RenderRequest& r, const std::string& v) {
+                           // "" is the whole image, as checkTile lets it through
+                           r.tile = v.empty() ? std::nullopt : std::optional(parseTileSpec(v));
+                       }));
     t.push_back(option(stringParam("grid", "", "grid of a bare .vdb (default: density, else the first float grid)"),
                        kRequestOnly, [](RenderRequest& r, const std::string& v) { r.grid = v; }));
     t.push_back(sceneOption(stringParam("technique", "volume.raymarch",
